@@ -1,0 +1,191 @@
+// Fast Poisson solver: 2D FFTW real-to-real transforms with the exact eigenvalues of the 5-point
+// cell-centred Laplacian (see fast_poisson_solver.h for the transform table and the data folding).
+#include "ehd_capsule/electric/fast_poisson_solver.h"
+
+#include <fftw3.h>
+
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+namespace ehd {
+namespace {
+
+// FFTW's planner is not thread-safe; serialise plan creation and destruction.
+std::mutex& PlannerMutex() {
+  static std::mutex m;
+  return m;
+}
+
+struct AxisTransform {
+  fftw_r2r_kind forward;
+  fftw_r2r_kind inverse;
+  double normalisation;
+  std::vector<double> eigenvalues;  // times h^2
+};
+
+AxisTransform MakeAxis(BoundaryKind lo, BoundaryKind hi, int n, const char* axis) {
+  const bool lo_periodic = lo == BoundaryKind::kPeriodic;
+  const bool hi_periodic = hi == BoundaryKind::kPeriodic;
+  if (lo_periodic != hi_periodic) {
+    throw std::invalid_argument(std::string("PoissonBoundaries: periodic ") + axis +
+                                " sides must pair up (both min and max periodic)");
+  }
+  AxisTransform a;
+  a.eigenvalues.resize(n);
+  const double pi = M_PI;
+  auto sin2 = [](double t) { return std::sin(t) * std::sin(t); };
+  if (lo_periodic) {
+    a.forward = FFTW_R2HC;
+    a.inverse = FFTW_HC2R;
+    a.normalisation = n;
+    for (int k = 0; k < n; ++k) {
+      const int m = (k <= n / 2) ? k : n - k;
+      a.eigenvalues[k] = -4.0 * sin2(pi * m / n);
+    }
+    return a;
+  }
+  a.normalisation = 2.0 * n;
+  const bool lo_d = lo == BoundaryKind::kDirichlet, hi_d = hi == BoundaryKind::kDirichlet;
+  if (lo_d && hi_d) {
+    a.forward = FFTW_RODFT10;
+    a.inverse = FFTW_RODFT01;
+    for (int k = 0; k < n; ++k) a.eigenvalues[k] = -4.0 * sin2(pi * (k + 1) / (2.0 * n));
+  } else if (!lo_d && !hi_d) {
+    a.forward = FFTW_REDFT10;
+    a.inverse = FFTW_REDFT01;
+    for (int k = 0; k < n; ++k) a.eigenvalues[k] = -4.0 * sin2(pi * k / (2.0 * n));
+  } else {
+    a.forward = lo_d ? FFTW_RODFT11 : FFTW_REDFT11;
+    a.inverse = a.forward;
+    for (int k = 0; k < n; ++k) a.eigenvalues[k] = -4.0 * sin2(pi * (k + 0.5) / (2.0 * n));
+  }
+  return a;
+}
+
+}  // namespace
+
+struct FastPoissonSolver::Plans {
+  double* buffer = nullptr;
+  fftw_plan forward = nullptr;
+  fftw_plan inverse = nullptr;
+};
+
+bool IsSingular(const PoissonBoundaries& bc) {
+  return bc.x_min != BoundaryKind::kDirichlet && bc.x_max != BoundaryKind::kDirichlet &&
+         bc.y_min != BoundaryKind::kDirichlet && bc.y_max != BoundaryKind::kDirichlet;
+}
+
+FastPoissonSolver::FastPoissonSolver(const Grid2D& grid, const PoissonBoundaries& bc)
+    : grid_(grid), bc_(bc), plans_(std::make_unique<Plans>()) {
+  if (grid.nx < 1 || grid.ny < 1) {
+    throw std::invalid_argument("FastPoissonSolver: grid must have nx, ny >= 1, got " +
+                                std::to_string(grid.nx) + " x " + std::to_string(grid.ny));
+  }
+  if (!(grid.h > 0.0)) {
+    throw std::invalid_argument("FastPoissonSolver: grid.h must be > 0, got " +
+                                std::to_string(grid.h));
+  }
+  const AxisTransform ax = MakeAxis(bc.x_min, bc.x_max, grid.nx, "x");
+  const AxisTransform ay = MakeAxis(bc.y_min, bc.y_max, grid.ny, "y");
+  const int nx = grid.nx, ny = grid.ny;
+  const double h2 = grid.h * grid.h;
+  const double scale = 1.0 / (ax.normalisation * ay.normalisation);
+  inverse_eigenvalues_.assign(grid.size(), 0.0);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double lambda = (ax.eigenvalues[i] + ay.eigenvalues[j]) / h2;
+      // The only zero eigenvalue is the constant mode of the singular (no Dirichlet) case.
+      inverse_eigenvalues_[grid.index(i, j)] =
+          (std::abs(lambda) > 1e-12 / h2) ? scale / lambda : 0.0;
+    }
+  }
+  std::lock_guard<std::mutex> lock(PlannerMutex());
+  plans_->buffer = fftw_alloc_real(grid.size());
+  // Row-major [ny][nx]: the first FFTW dimension is y, matching index = j * nx + i.
+  plans_->forward = fftw_plan_r2r_2d(ny, nx, plans_->buffer, plans_->buffer, ay.forward, ax.forward,
+                                     FFTW_MEASURE);
+  plans_->inverse = fftw_plan_r2r_2d(ny, nx, plans_->buffer, plans_->buffer, ay.inverse, ax.inverse,
+                                     FFTW_MEASURE);
+  if (!plans_->forward || !plans_->inverse) {
+    throw std::runtime_error("FastPoissonSolver: FFTW could not make a plan");
+  }
+}
+
+FastPoissonSolver::~FastPoissonSolver() {
+  std::lock_guard<std::mutex> lock(PlannerMutex());
+  if (plans_->forward) fftw_destroy_plan(plans_->forward);
+  if (plans_->inverse) fftw_destroy_plan(plans_->inverse);
+  if (plans_->buffer) fftw_free(plans_->buffer);
+}
+
+void FastPoissonSolver::Solve(const std::vector<double>& rhs, std::vector<double>& solution) {
+  const std::size_t n = grid_.size();
+  if (rhs.size() != n) {
+    throw std::invalid_argument("FastPoissonSolver::Solve: rhs has " + std::to_string(rhs.size()) +
+                                " entries, grid has " + std::to_string(n));
+  }
+  double* __restrict buf = plans_->buffer;
+  std::memcpy(buf, rhs.data(), n * sizeof(double));
+  fftw_execute(plans_->forward);
+  const double* __restrict inv = inverse_eigenvalues_.data();
+  for (std::size_t k = 0; k < n; ++k) buf[k] *= inv[k];
+  fftw_execute(plans_->inverse);
+  solution.resize(n);
+  std::memcpy(solution.data(), buf, n * sizeof(double));
+}
+
+void AddBoundaryDataToRhs(const Grid2D& grid, const PoissonBoundaries& bc,
+                          const PoissonBoundaryData& data, std::vector<double>& rhs) {
+  const double h = grid.h;
+  auto fold = [&](BoundaryKind kind, const std::vector<double>& side, int count, const char* name,
+                  auto index_of) {
+    if (side.empty() || kind == BoundaryKind::kPeriodic) return;
+    if (static_cast<int>(side.size()) != count) {
+      throw std::invalid_argument(std::string("PoissonBoundaryData.") + name + " has " +
+                                  std::to_string(side.size()) + " values, expected " +
+                                  std::to_string(count));
+    }
+    const double factor = (kind == BoundaryKind::kDirichlet) ? 2.0 / (h * h) : 1.0 / h;
+    for (int k = 0; k < count; ++k) rhs[index_of(k)] -= factor * side[k];
+  };
+  const int nx = grid.nx, ny = grid.ny;
+  fold(bc.x_min, data.x_min, ny, "x_min", [&](int j) { return grid.index(0, j); });
+  fold(bc.x_max, data.x_max, ny, "x_max", [&](int j) { return grid.index(nx - 1, j); });
+  fold(bc.y_min, data.y_min, nx, "y_min", [&](int i) { return grid.index(i, 0); });
+  fold(bc.y_max, data.y_max, nx, "y_max", [&](int i) { return grid.index(i, ny - 1); });
+}
+
+PoissonBoundaryData SampleBoundaryData(
+    const Grid2D& grid, const PoissonBoundaries& bc,
+    const std::function<double(double, double)>& value,
+    const std::function<Eigen::Vector2d(double, double)>& gradient) {
+  PoissonBoundaryData d;
+  auto sample = [&](BoundaryKind kind, std::vector<double>& out, int count, auto point,
+                    Eigen::Vector2d normal) {
+    if (kind == BoundaryKind::kPeriodic) return;
+    out.resize(count);
+    for (int k = 0; k < count; ++k) {
+      const Eigen::Vector2d p = point(k);
+      out[k] = (kind == BoundaryKind::kDirichlet) ? value(p.x(), p.y())
+                                                  : gradient(p.x(), p.y()).dot(normal);
+    }
+  };
+  sample(
+      bc.x_min, d.x_min, grid.ny, [&](int j) { return Eigen::Vector2d(grid.x0, grid.y(j)); },
+      Eigen::Vector2d(-1, 0));
+  sample(
+      bc.x_max, d.x_max, grid.ny, [&](int j) { return Eigen::Vector2d(grid.x_max(), grid.y(j)); },
+      Eigen::Vector2d(1, 0));
+  sample(
+      bc.y_min, d.y_min, grid.nx, [&](int i) { return Eigen::Vector2d(grid.x(i), grid.y0); },
+      Eigen::Vector2d(0, -1));
+  sample(
+      bc.y_max, d.y_max, grid.nx, [&](int i) { return Eigen::Vector2d(grid.x(i), grid.y_max()); },
+      Eigen::Vector2d(0, 1));
+  return d;
+}
+
+}  // namespace ehd
