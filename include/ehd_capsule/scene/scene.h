@@ -1,0 +1,114 @@
+// A scene: one simulation case as data (config/scenes/<name>.yaml).
+//
+// The physics is given by the dimensionless numbers of song2019 (top-level keys):
+//   Ca    = mu k a / E_s (capsule) or mu k a / gamma (drop)          eq. (119), sec. 4.2.2
+//   Re    = rho k a^2 / mu                                            sec. 4.1
+//   Oh    = mu / sqrt(rho a T), T = gamma or E_s (no shear only)      sec. 4.2.2
+//   E_b   = E_B / (a^2 E_s)                                           eq. (120) (see units.h)
+//   eta   = mu_s / (a mu)                                             eq. (121)
+//   V     = mu_inside / mu_outside                                    sec. 5.4
+//   Ca_E  = eps+ a E^2 / T                                            sec. 4.2.2 and 5.1
+//   sigma_r = sigma- / sigma+, eps_r = eps- / eps+ (inside / outside) sec. 4.2
+// plus the resolution (N grid cells across the domain, M markers), the geometry, the membrane
+// model, the flow, the electric field and the numerics. LoadScene validates everything: an
+// unknown key, a missing key, a wrong type or an out-of-range value throws SceneError naming the
+// key, the value and the accepted range. Nothing here depends on the solvers; units.h turns a
+// Scene into lattice values.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ehd {
+
+struct SceneError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+enum class InitialShape { kCircle, kEllipse, kBiconcave };
+// kDrop: interfacial tension gamma only. kCapsule: Hookean shear elasticity E_s, plus the
+// Kelvin-Voigt membrane viscosity when eta > 0 and bending when E_b > 0.
+enum class MembraneKind { kDrop, kCapsule };
+// kShear: walls at y = +-L move at +-k L (u = (k y, 0)); kNone: closed box, fluid at rest.
+enum class FlowKind { kShear, kNone };
+enum class MarkerTimeScheme { kForwardEuler, kAdamsBashforth2 };
+
+const char* ToString(InitialShape shape);
+const char* ToString(MembraneKind kind);
+const char* ToString(FlowKind kind);
+const char* ToString(MarkerTimeScheme scheme);
+
+struct SceneGeometry {
+  InitialShape shape = InitialShape::kCircle;
+  double half_width = 4.0;    // L / a: the domain is [-L, L]^2
+  double aspect_ratio = 1.0;  // ellipse: minor / major semi-axis (area pi a^2), x-major
+  double center_x = 0.0;      // initial centroid offset in units of a
+  double center_y = 0.0;
+};
+
+struct SceneElectric {
+  double max_ca_e = 5.0;  // SetCaE accepts [0, max_ca_e]
+};
+
+struct SceneNumerics {
+  double tau = 1.0;  // LBM relaxation time of the outer fluid: nu = (tau - 1/2) / 3
+  MarkerTimeScheme integrator = MarkerTimeScheme::kForwardEuler;
+  int membrane_substeps = 1;
+  int electric_every = 1;              // solve the potential every n steps ...
+  double electric_move_tolerance = 0;  // ... or when a marker moved more (cells) since the last
+  long max_steps = 1000000;            // hard cap for `ehd_sim run`
+  double t_end = 10.0;                 // default run length (dimensionless time)
+  double area_drift_limit = 0.05;      // watchdog: |A/A0 - 1|
+  double max_mach = 0.1;               // watchdog: max |u| / c_s
+};
+
+struct Scene {
+  std::string name;  // file stem, or "inline"
+  std::string description;
+  std::string source;  // path it came from
+  std::string yaml;    // YAML text with the overrides applied (for publishing)
+  std::vector<std::string> overrides;
+
+  double Ca = 0.0;
+  double Re = 0.0;
+  double Oh = 0.0;
+  double E_b = 0.0;
+  double eta = 0.0;
+  double V = 1.0;
+  double Ca_E = 0.0;
+  double sigma_r = 1.0;
+  double eps_r = 1.0;
+  int N = 0;  // grid cells across the domain
+  int M = 0;  // markers on the membrane
+
+  SceneGeometry geometry;
+  MembraneKind membrane = MembraneKind::kCapsule;
+  FlowKind flow = FlowKind::kShear;
+  bool electric_field = false;  // Ca_E > 0 or an explicit `electric:` block
+  SceneElectric electric;
+  SceneNumerics numerics;
+
+  bool has_shear() const { return flow == FlowKind::kShear; }
+  bool has_bending() const { return membrane == MembraneKind::kCapsule && E_b > 0.0; }
+  bool has_membrane_viscosity() const { return membrane == MembraneKind::kCapsule && eta > 0.0; }
+  bool has_viscosity_contrast() const { return V != 1.0; }
+};
+
+// Directory of the shipped scenes (the EHD_SCENE_DIR compile definition).
+std::string SceneDirectory();
+// Names (file stems) of the scenes in SceneDirectory(), sorted.
+std::vector<std::string> ListScenes();
+
+// Loads a scene by name (SceneDirectory()/<name>.yaml) or by path (anything containing '/' or
+// ending in .yaml), applies "key=value" overrides (nested keys as "geometry.shape=ellipse";
+// the value is read as YAML) and validates it. Throws SceneError.
+Scene LoadScene(const std::string& name_or_path, const std::vector<std::string>& overrides = {});
+// The same from YAML text; `origin` names it in error messages.
+Scene ParseScene(const std::string& yaml_text, const std::vector<std::string>& overrides = {},
+                 const std::string& origin = "<inline>");
+
+// One line per dimensionless number and setting, for printing at start.
+std::string DescribeScene(const Scene& scene);
+
+}  // namespace ehd

@@ -1,0 +1,452 @@
+// Scene files: parsing, overrides and validation (see scene.h for the keys and their meaning).
+#include "ehd_capsule/scene/scene.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+namespace ehd {
+namespace {
+
+std::string FormatNumber(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+// An interval of accepted values, printed as "(0, 10]".
+struct Range {
+  double lo;
+  double hi;
+  bool lo_open = false;
+  bool hi_open = false;
+  bool Contains(double v) const {
+    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+  std::string Text() const {
+    return std::string(lo_open ? "(" : "[") + FormatNumber(lo) + ", " + FormatNumber(hi) +
+           (hi_open ? ")" : "]");
+  }
+};
+Range Closed(double lo, double hi) { return {lo, hi, false, false}; }
+Range LeftOpen(double lo, double hi) { return {lo, hi, true, false}; }
+
+std::string ScalarText(const YAML::Node& node) {
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsMap()) return "a block (map)";
+  if (node.IsSequence()) return "a list";
+  return "nothing";
+}
+
+// Reads the keys of one YAML block; remembers which keys it knows so that the rest are reported
+// as unknown.
+class BlockReader {
+ public:
+  BlockReader(const YAML::Node& node, std::string prefix, std::string origin)
+      : node_(node), prefix_(std::move(prefix)), origin_(std::move(origin)) {
+    if (node_ && !node_.IsNull() && !node_.IsMap()) {
+      Fail(prefix_.empty() ? "the scene" : "'" + prefix_ + "'",
+           "must be a block of 'key: value' lines, got " + ScalarText(node_));
+    }
+  }
+
+  bool Has(const std::string& key) {
+    known_.insert(key);
+    return node_ && node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
+  }
+  bool Present(const std::string& key) {  // defined, possibly as an empty block
+    known_.insert(key);
+    return node_ && node_.IsMap() && node_[key].IsDefined();
+  }
+  YAML::Node Child(const std::string& key) {
+    known_.insert(key);
+    return node_ && node_.IsMap() ? node_[key] : YAML::Node();
+  }
+
+  double Number(const std::string& key, const Range& range, std::optional<double> fallback,
+                const std::string& meaning) {
+    if (!Has(key)) return Missing(key, fallback, meaning + ", a number in " + range.Text());
+    const YAML::Node v = node_[key];
+    double x = 0.0;
+    bool ok = v.IsScalar();
+    if (ok) {
+      try {
+        x = v.as<double>();
+      } catch (const YAML::Exception&) {
+        ok = false;
+      }
+    }
+    if (!ok || !std::isfinite(x)) {
+      Fail(Name(key),
+           "expected a number in " + range.Text() + " (" + meaning + "), got " + ScalarText(v));
+    }
+    if (!range.Contains(x)) {
+      Fail(Name(key),
+           "= " + v.Scalar() + " is out of range: accepted " + range.Text() + " (" + meaning + ")");
+    }
+    return x;
+  }
+
+  long Integer(const std::string& key, long lo, long hi, std::optional<long> fallback,
+               const std::string& meaning) {
+    const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    if (!Has(key)) {
+      return static_cast<long>(Missing(key,
+                                       fallback ? std::optional<double>(*fallback) : std::nullopt,
+                                       meaning + ", an integer in " + range));
+    }
+    const YAML::Node v = node_[key];
+    double x = 0.0;
+    bool ok = v.IsScalar();
+    if (ok) {
+      try {
+        x = v.as<double>();
+      } catch (const YAML::Exception&) {
+        ok = false;
+      }
+    }
+    if (!ok || !std::isfinite(x) || x != std::floor(x)) {
+      Fail(Name(key),
+           "expected an integer in " + range + " (" + meaning + "), got " + ScalarText(v));
+    }
+    if (x < lo || x > hi) {
+      Fail(Name(key),
+           "= " + v.Scalar() + " is out of range: accepted " + range + " (" + meaning + ")");
+    }
+    return static_cast<long>(x);
+  }
+
+  std::string Choice(const std::string& key, const std::vector<std::string>& choices,
+                     std::optional<std::string> fallback, const std::string& meaning) {
+    std::string list;
+    for (const auto& c : choices) list += (list.empty() ? "" : " | ") + c;
+    if (!Has(key)) {
+      if (fallback) return *fallback;
+      Fail(Name(key), "missing (" + meaning + ": one of " + list + ")");
+    }
+    const YAML::Node v = node_[key];
+    if (!v.IsScalar() || std::find(choices.begin(), choices.end(), v.Scalar()) == choices.end()) {
+      Fail(Name(key), "expected one of " + list + " (" + meaning + "), got " + ScalarText(v));
+    }
+    return v.Scalar();
+  }
+
+  std::string Text(const std::string& key, const std::string& fallback) {
+    if (!Has(key)) return fallback;
+    const YAML::Node v = node_[key];
+    if (!v.IsScalar()) Fail(Name(key), "expected text, got " + ScalarText(v));
+    return v.Scalar();
+  }
+
+  // A key that must not be given in this configuration.
+  void Forbid(const std::string& key, const std::string& why) {
+    if (Has(key)) Fail(Name(key), "= " + ScalarText(node_[key]) + " is not accepted here: " + why);
+  }
+
+  void RejectUnknown() const {
+    if (!node_ || !node_.IsMap()) return;
+    for (const auto& entry : node_) {
+      const std::string key = entry.first.as<std::string>();
+      if (known_.count(key)) continue;
+      std::string list;
+      for (const auto& k : known_) list += (list.empty() ? "" : ", ") + k;
+      Fail("'" + (prefix_.empty() ? key : prefix_ + "." + key) + "'",
+           "unknown key (value " + ScalarText(entry.second) + "); accepted keys" +
+               (prefix_.empty() ? "" : " in '" + prefix_ + "'") + ": " + list);
+    }
+  }
+
+  [[noreturn]] void Fail(const std::string& what, const std::string& message) const {
+    throw SceneError("scene " + origin_ + ": " + what + " " + message);
+  }
+
+ private:
+  std::string Name(const std::string& key) const {
+    return "'" + (prefix_.empty() ? key : prefix_ + "." + key) + "'";
+  }
+  double Missing(const std::string& key, std::optional<double> fallback,
+                 const std::string& meaning) {
+    if (fallback) return *fallback;
+    Fail(Name(key), "missing (" + meaning + ")");
+  }
+
+  YAML::Node node_;
+  std::string prefix_;
+  std::string origin_;
+  std::set<std::string> known_;
+};
+
+std::vector<std::string> SplitPath(const std::string& key) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(key);
+  while (std::getline(in, part, '.')) parts.push_back(part);
+  return parts;
+}
+
+void SetPath(YAML::Node node, const std::vector<std::string>& path, std::size_t i,
+             const YAML::Node& value, const std::string& override_text) {
+  if (i + 1 == path.size()) {
+    node[path[i]] = value;
+    return;
+  }
+  YAML::Node child = node[path[i]];
+  if (child.IsDefined() && !child.IsNull() && !child.IsMap()) {
+    throw SceneError("override '" + override_text + "': '" + path[i] + "' is not a block");
+  }
+  if (!child.IsDefined() || child.IsNull()) {
+    node[path[i]] = YAML::Node(YAML::NodeType::Map);
+    child = node[path[i]];
+  }
+  SetPath(child, path, i + 1, value, override_text);
+}
+
+void ApplyOverride(YAML::Node& root, const std::string& text) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw SceneError("override '" + text + "': expected key=value (e.g. Ca=0.05)");
+  }
+  const std::string key = text.substr(0, eq);
+  const std::string value_text = text.substr(eq + 1);
+  const std::vector<std::string> path = SplitPath(key);
+  for (const auto& p : path) {
+    if (p.empty()) throw SceneError("override '" + text + "': empty key part in '" + key + "'");
+  }
+  YAML::Node value;
+  try {
+    value = YAML::Load(value_text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError("override '" + text + "': value is not valid YAML: " + e.what());
+  }
+  SetPath(root, path, 0, value, text);
+}
+
+Scene Validate(const YAML::Node& root, const std::string& origin) {
+  Scene s;
+  BlockReader top(root, "", origin);
+  s.description = top.Text("description", "");
+  if (top.Has("name")) s.name = top.Text("name", "");
+
+  s.N = static_cast<int>(top.Integer("N", 16, 4096, std::nullopt, "grid cells across the domain"));
+  s.M = static_cast<int>(top.Integer("M", 8, 100000, std::nullopt, "markers on the membrane"));
+
+  // Geometry.
+  {
+    BlockReader g(top.Child("geometry"), "geometry", origin);
+    if (!top.Has("geometry")) top.Fail("'geometry'", "missing (block with shape, half_width)");
+    const std::string shape =
+        g.Choice("shape", {"circle", "ellipse", "biconcave"}, std::nullopt, "initial shape");
+    s.geometry.shape = shape == "circle"    ? InitialShape::kCircle
+                       : shape == "ellipse" ? InitialShape::kEllipse
+                                            : InitialShape::kBiconcave;
+    s.geometry.half_width = g.Number("half_width", LeftOpen(1.0, 1000.0), std::nullopt,
+                                     "domain half-width L in units of the radius a");
+    if (s.geometry.shape == InitialShape::kEllipse) {
+      s.geometry.aspect_ratio = g.Number("aspect_ratio", LeftOpen(0.0, 1.0), std::nullopt,
+                                         "minor/major semi-axis of the initial ellipse");
+    } else {
+      g.Forbid("aspect_ratio", "only shape: ellipse has an aspect ratio");
+    }
+    s.geometry.center_x = g.Number("center_x", Closed(-1000, 1000), 0.0, "x offset / a");
+    s.geometry.center_y = g.Number("center_y", Closed(-1000, 1000), 0.0, "y offset / a");
+    g.RejectUnknown();
+  }
+
+  const std::string membrane =
+      top.Choice("membrane", {"capsule", "drop"}, std::nullopt,
+                 "membrane model: capsule (Hookean + Kelvin-Voigt + bending) or drop (tension)");
+  s.membrane = membrane == "drop" ? MembraneKind::kDrop : MembraneKind::kCapsule;
+  const std::string flow =
+      top.Choice("flow", {"shear", "none"}, std::nullopt, "imposed flow: shear walls or none");
+  s.flow = flow == "none" ? FlowKind::kNone : FlowKind::kShear;
+
+  const std::string tension = s.membrane == MembraneKind::kDrop ? "gamma" : "E_s";
+  if (s.has_shear()) {
+    s.Ca =
+        top.Number("Ca", LeftOpen(0.0, 10.0), std::nullopt, "capillary number mu k a / " + tension);
+    s.Re = top.Number("Re", LeftOpen(0.0, 100.0), std::nullopt, "Reynolds number rho k a^2 / mu");
+    top.Forbid("Oh", "Oh sets the time scale only without shear (flow: none); use Ca and Re");
+  } else {
+    s.Oh = top.Number("Oh", LeftOpen(0.0, 100.0), std::nullopt,
+                      "Ohnesorge number mu / sqrt(rho a " + tension + ")");
+    top.Forbid("Ca", "there is no shear rate with flow: none (use Oh)");
+    top.Forbid("Re", "there is no shear rate with flow: none (use Oh)");
+  }
+  if (s.membrane == MembraneKind::kCapsule) {
+    s.E_b = top.Number("E_b", Closed(0.0, 10.0), std::nullopt, "bending modulus E_B / (a^2 E_s)");
+    s.eta = top.Number("eta", Closed(0.0, 100.0), std::nullopt,
+                       "membrane viscosity ratio mu_s / (a mu)");
+  } else {
+    for (const char* key : {"E_b", "eta"}) {
+      if (top.Has(key)) {
+        const double v = top.Number(key, Closed(0.0, 0.0), 0.0,
+                                    "a drop has no bending or membrane viscosity; needs "
+                                    "membrane: capsule");
+        (void)v;
+      }
+    }
+  }
+  s.V =
+      top.Number("V", Closed(0.01, 100.0), std::nullopt, "viscosity ratio mu_inside / mu_outside");
+
+  // Electric field: present iff Ca_E > 0 or an explicit `electric:` block.
+  const bool electric_block = top.Present("electric");
+  s.Ca_E = top.Number("Ca_E", Closed(0.0, 100.0), 0.0,
+                      "electric capillary number eps+ a E^2 / " + tension);
+  s.electric_field = s.Ca_E > 0.0 || electric_block;
+  {
+    BlockReader e(top.Child("electric"), "electric", origin);
+    s.electric.max_ca_e =
+        e.Number("max_Ca_E", LeftOpen(0.0, 100.0), 5.0, "largest Ca_E accepted at run time");
+    e.RejectUnknown();
+  }
+  if (s.electric_field) {
+    s.sigma_r = top.Number("sigma_r", Closed(1e-4, 1e4), std::nullopt,
+                           "conductivity ratio sigma- / sigma+ (inside / outside)");
+    s.eps_r = top.Number("eps_r", Closed(1e-4, 1e4), std::nullopt,
+                         "permittivity ratio eps- / eps+ (inside / outside)");
+    if (s.Ca_E > s.electric.max_ca_e) {
+      top.Fail("'Ca_E'", "= " + FormatNumber(s.Ca_E) + " is out of range: accepted [0, " +
+                             FormatNumber(s.electric.max_ca_e) + "] (electric.max_Ca_E)");
+    }
+  } else {
+    // Accepted (so a scene can be switched on with --set Ca_E=...), checked for range.
+    s.sigma_r = top.Number("sigma_r", Closed(1e-4, 1e4), 1.0, "conductivity ratio");
+    s.eps_r = top.Number("eps_r", Closed(1e-4, 1e4), 1.0, "permittivity ratio");
+  }
+
+  {
+    BlockReader n(top.Child("numerics"), "numerics", origin);
+    s.numerics.tau = n.Number("tau", LeftOpen(0.5, 20.0), 1.0,
+                              "LBM relaxation time of the outer fluid, nu = (tau - 1/2)/3");
+    const std::string integrator =
+        n.Choice("integrator", {"forward_euler", "adams_bashforth2"}, std::string("forward_euler"),
+                 "marker time integration");
+    s.numerics.integrator = integrator == "adams_bashforth2" ? MarkerTimeScheme::kAdamsBashforth2
+                                                             : MarkerTimeScheme::kForwardEuler;
+    s.numerics.membrane_substeps =
+        static_cast<int>(n.Integer("membrane_substeps", 1, 1000, 1, "membrane force sub-steps"));
+    s.numerics.electric_every = static_cast<int>(
+        n.Integer("electric_every", 1, 1000000, 1, "solve the potential every n steps"));
+    s.numerics.electric_move_tolerance =
+        n.Number("electric_move_tolerance", Closed(0.0, 10.0), 0.0,
+                 "re-solve when a marker moved more than this (cells); 0 = off");
+    s.numerics.max_steps = n.Integer("max_steps", 1, 1000000000000L, 1000000, "step cap");
+    s.numerics.t_end = n.Number("t_end", LeftOpen(0.0, 1e6), 10.0,
+                                "default run length in units of the scene's time scale");
+    s.numerics.area_drift_limit =
+        n.Number("area_drift_limit", LeftOpen(0.0, 1.0), 0.05, "watchdog on |A/A0 - 1|");
+    s.numerics.max_mach = n.Number("max_mach", LeftOpen(0.0, 0.5), 0.1,
+                                   "watchdog on the lattice Mach number |u|/c_s");
+    n.RejectUnknown();
+  }
+  top.RejectUnknown();
+  return s;
+}
+
+}  // namespace
+
+const char* ToString(InitialShape shape) {
+  switch (shape) {
+    case InitialShape::kCircle:
+      return "circle";
+    case InitialShape::kEllipse:
+      return "ellipse";
+    case InitialShape::kBiconcave:
+      return "biconcave";
+  }
+  return "?";
+}
+const char* ToString(MembraneKind kind) { return kind == MembraneKind::kDrop ? "drop" : "capsule"; }
+const char* ToString(FlowKind kind) { return kind == FlowKind::kShear ? "shear" : "none"; }
+const char* ToString(MarkerTimeScheme scheme) {
+  return scheme == MarkerTimeScheme::kAdamsBashforth2 ? "adams_bashforth2" : "forward_euler";
+}
+
+std::string SceneDirectory() { return EHD_SCENE_DIR; }
+
+std::vector<std::string> ListScenes() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(SceneDirectory(), ec)) {
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Scene ParseScene(const std::string& yaml_text, const std::vector<std::string>& overrides,
+                 const std::string& origin) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError("scene " + origin + ": not valid YAML: " + e.what());
+  }
+  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  if (!root.IsMap()) throw SceneError("scene " + origin + ": expected a block of key: value lines");
+  for (const auto& o : overrides) ApplyOverride(root, o);
+  Scene scene = Validate(root, origin);
+  if (scene.name.empty()) scene.name = "inline";
+  scene.source = origin;
+  scene.overrides = overrides;
+  std::ostringstream text;
+  text << "# scene " << scene.name << " (" << origin << ")";
+  if (!overrides.empty()) {
+    text << ", overrides:";
+    for (const auto& o : overrides) text << ' ' << o;
+  }
+  text << '\n' << YAML::Dump(root) << '\n';
+  scene.yaml = text.str();
+  return scene;
+}
+
+Scene LoadScene(const std::string& name_or_path, const std::vector<std::string>& overrides) {
+  const bool is_path =
+      name_or_path.find('/') != std::string::npos ||
+      (name_or_path.size() > 5 && name_or_path.compare(name_or_path.size() - 5, 5, ".yaml") == 0);
+  const std::string path = is_path ? name_or_path : SceneDirectory() + "/" + name_or_path + ".yaml";
+  std::ifstream in(path);
+  if (!in) {
+    std::string known;
+    for (const auto& n : ListScenes()) known += (known.empty() ? "" : ", ") + n;
+    throw SceneError("scene '" + name_or_path + "': cannot read " + path +
+                     (is_path ? "" : " (shipped scenes: " + known + ")"));
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  Scene scene = ParseScene(buffer.str(), overrides, path);
+  if (scene.name == "inline") scene.name = std::filesystem::path(path).stem().string();
+  return scene;
+}
+
+std::string DescribeScene(const Scene& s) {
+  std::ostringstream out;
+  out << "scene " << s.name << (s.description.empty() ? "" : ": " + s.description) << '\n';
+  out << "  membrane " << ToString(s.membrane) << ", shape " << ToString(s.geometry.shape)
+      << ", flow " << ToString(s.flow) << ", electric field " << (s.electric_field ? "on" : "off")
+      << '\n';
+  if (s.has_shear())
+    out << "  Ca = " << s.Ca << ", Re = " << s.Re;
+  else
+    out << "  Oh = " << s.Oh;
+  if (s.membrane == MembraneKind::kCapsule) out << ", E_b = " << s.E_b << ", eta = " << s.eta;
+  out << ", V = " << s.V << '\n';
+  if (s.electric_field) {
+    out << "  Ca_E = " << s.Ca_E << ", sigma_r = " << s.sigma_r << ", eps_r = " << s.eps_r << '\n';
+  }
+  out << "  N = " << s.N << ", M = " << s.M << ", L/a = " << s.geometry.half_width;
+  if (s.geometry.shape == InitialShape::kEllipse) out << ", b/a = " << s.geometry.aspect_ratio;
+  out << '\n';
+  for (const auto& o : s.overrides) out << "  override " << o << '\n';
+  return out.str();
+}
+
+}  // namespace ehd

@@ -1,0 +1,161 @@
+// Scene parsing, overrides, validation messages and the units conversion.
+#include "ehd_capsule/scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "ehd_capsule/scene/units.h"
+
+namespace ehd {
+namespace {
+
+const char* kMinimalCapsule = R"(
+name: tiny
+Ca: 0.05
+Re: 0.1
+E_b: 0
+eta: 0
+V: 1
+N: 32
+M: 32
+geometry: {shape: circle, half_width: 4}
+membrane: capsule
+flow: shear
+)";
+
+// The error must name the key, the offending value and the accepted range.
+void ExpectSceneError(const std::string& text, const std::vector<std::string>& overrides,
+                      const std::vector<std::string>& must_contain) {
+  try {
+    ParseScene(text, overrides, "test");
+    FAIL() << "expected SceneError";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    for (const auto& piece : must_contain) {
+      EXPECT_NE(what.find(piece), std::string::npos) << "'" << piece << "' not in: " << what;
+    }
+  }
+}
+
+TEST(Scene, ParsesMinimalCapsule) {
+  const Scene s = ParseScene(kMinimalCapsule);
+  EXPECT_EQ(s.name, "tiny");
+  EXPECT_DOUBLE_EQ(s.Ca, 0.05);
+  EXPECT_EQ(s.N, 32);
+  EXPECT_EQ(s.membrane, MembraneKind::kCapsule);
+  EXPECT_FALSE(s.electric_field);  // no Ca_E and no electric block
+  EXPECT_FALSE(s.has_bending());
+  EXPECT_FALSE(s.has_viscosity_contrast());
+}
+
+TEST(Scene, UnknownKeyIsNamed) {
+  ExpectSceneError(std::string(kMinimalCapsule) + "Caa: 1\n", {}, {"'Caa'", "unknown", "Ca"});
+  ExpectSceneError(kMinimalCapsule, {"geometry.radius=2"}, {"'geometry.radius'", "unknown"});
+}
+
+TEST(Scene, MissingKeyIsNamed) {
+  std::string text = kMinimalCapsule;
+  text.replace(text.find("N: 32\n"), 6, "");
+  ExpectSceneError(text, {}, {"'N'", "missing", "[16, 4096]"});
+}
+
+TEST(Scene, WrongTypeIsNamed) {
+  ExpectSceneError(kMinimalCapsule, {"Ca=fast"}, {"'Ca'", "'fast'", "(0, 10]"});
+  ExpectSceneError(kMinimalCapsule, {"N=64.5"}, {"'N'", "integer", "64.5"});
+  ExpectSceneError(kMinimalCapsule, {"membrane=gel"}, {"'membrane'", "capsule | drop", "'gel'"});
+  ExpectSceneError(kMinimalCapsule, {"geometry=3"}, {"'geometry'", "block"});
+}
+
+TEST(Scene, OutOfRangeIsNamed) {
+  ExpectSceneError(kMinimalCapsule, {"Ca=-0.1"}, {"'Ca'", "-0.1", "(0, 10]"});
+  ExpectSceneError(kMinimalCapsule, {"numerics.tau=0.5"}, {"'numerics.tau'", "0.5", "(0.5, 20]"});
+  ExpectSceneError(kMinimalCapsule, {"V=0"}, {"'V'", "[0.01, 100]"});
+  // A drop has no bending stiffness.
+  ExpectSceneError(kMinimalCapsule, {"membrane=drop", "E_b=0.1"}, {"'E_b'", "0.1", "capsule"});
+  // Without shear there is no Ca.
+  ExpectSceneError(kMinimalCapsule, {"flow=none", "Oh=1"}, {"'Ca'", "flow: none"});
+}
+
+TEST(Scene, ElectricFieldNeedsRatios) {
+  ExpectSceneError(kMinimalCapsule, {"Ca_E=0.3"}, {"'sigma_r'", "missing"});
+  const Scene s = ParseScene(kMinimalCapsule, {"Ca_E=0.3", "sigma_r=1.75", "eps_r=3.5"});
+  EXPECT_TRUE(s.electric_field);
+  // An explicit (empty) electric block builds the field at Ca_E = 0 so it can be switched on.
+  const Scene block =
+      ParseScene(std::string(kMinimalCapsule) + "electric: {}\nsigma_r: 2\neps_r: 1\n");
+  EXPECT_TRUE(block.electric_field);
+  EXPECT_DOUBLE_EQ(block.Ca_E, 0.0);
+  ExpectSceneError(kMinimalCapsule, {"Ca_E=6", "sigma_r=1", "eps_r=1"}, {"'Ca_E'", "[0, 5]"});
+}
+
+TEST(Scene, OverridesApplyAndAreKeptInTheText) {
+  const Scene s = ParseScene(kMinimalCapsule, {"Ca=0.2", "geometry.shape=ellipse",
+                                               "geometry.aspect_ratio=0.5", "numerics.tau=0.8"});
+  EXPECT_DOUBLE_EQ(s.Ca, 0.2);
+  EXPECT_EQ(s.geometry.shape, InitialShape::kEllipse);
+  EXPECT_DOUBLE_EQ(s.geometry.aspect_ratio, 0.5);
+  EXPECT_DOUBLE_EQ(s.numerics.tau, 0.8);
+  // The published text re-parses to the same scene.
+  const Scene again = ParseScene(s.yaml);
+  EXPECT_DOUBLE_EQ(again.Ca, 0.2);
+  EXPECT_EQ(again.geometry.shape, InitialShape::kEllipse);
+  ExpectSceneError(kMinimalCapsule, {"Ca"}, {"key=value"});
+}
+
+// Every shipped scene loads and gives usable lattice values.
+TEST(Scene, ShippedScenesLoad) {
+  const auto names = ListScenes();
+  EXPECT_GE(names.size(), 10u);
+  for (const auto& name : names) {
+    SCOPED_TRACE(name);
+    const Scene s = LoadScene(name);
+    EXPECT_EQ(s.name, name);
+    const LatticeUnits u = DeriveLatticeUnits(s);
+    EXPECT_GT(u.tau, 0.5);
+    EXPECT_LT(u.wall_mach, 0.1);
+  }
+  EXPECT_THROW(LoadScene("no_such_scene"), SceneError);
+}
+
+// Round trip: the lattice values put back into the definitions give the scene's numbers again
+// (Ca = mu k a / E_s, Re = rho k a^2 / mu, E_b = E_B / (a^2 E_s), eta = mu_s / (a mu),
+// Ca_E = eps+ a E^2 / E_s; Oh = mu / sqrt(rho a gamma)).
+TEST(Units, RoundTripOfTheDimensionlessNumbers) {
+  const Scene s = ParseScene(kMinimalCapsule, {"E_b=0.1", "eta=2", "Ca_E=0.3", "sigma_r=1.75",
+                                               "eps_r=3.5", "V=5", "numerics.tau=0.9"});
+  const LatticeUnits u = DeriveLatticeUnits(s);
+  const double mu = u.viscosity, a = u.radius, k = u.shear_rate;
+  EXPECT_DOUBLE_EQ(a, 4.0);  // N/2 / (L/a) = 16/4
+  EXPECT_NEAR(mu, (0.9 - 0.5) / 3.0, 1e-15);
+  EXPECT_NEAR(mu * k * a / u.tension, s.Ca, 1e-14);
+  EXPECT_NEAR(k * a * a / mu, s.Re, 1e-14);
+  EXPECT_NEAR(u.bending_modulus / (a * a * u.tension), s.E_b, 1e-14);
+  EXPECT_NEAR(u.membrane_viscosity / (a * mu), s.eta, 1e-14);
+  EXPECT_NEAR(u.eps_plus * a * u.field * u.field / u.tension, s.Ca_E, 1e-14);
+  EXPECT_NEAR(u.viscosity_inner / u.viscosity, 5.0, 1e-14);
+  EXPECT_NEAR(u.dt, k, 1e-18);  // one step is k dt = k in units of 1/k
+  EXPECT_NEAR(ShearRateForCa(u, 2 * s.Ca), 2 * k, 1e-15);
+
+  const Scene drop = ParseScene(
+      kMinimalCapsule, {"membrane=drop", "E_b=0", "eta=0", "flow=none", "Ca=", "Re=", "Oh=1"});
+  const LatticeUnits d = DeriveLatticeUnits(drop);
+  EXPECT_NEAR(d.viscosity / std::sqrt(d.radius * d.tension), 1.0, 1e-14);
+  EXPECT_DOUBLE_EQ(d.shear_rate, 0.0);
+  EXPECT_NEAR(d.steps_per_time_unit, d.viscosity * d.radius / d.tension, 1e-12);
+}
+
+TEST(Units, MachLimitFailsEarly) {
+  // k L = Re nu L / a^2 = 50 * (1/6) * 16 / 16 = 8.3: far above 0.1 c_s.
+  const Scene s = ParseScene(kMinimalCapsule, {"Re=50"});
+  try {
+    DeriveLatticeUnits(s);
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("Mach"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace ehd
