@@ -1,0 +1,51 @@
+// Lagrangian marker bookkeeping for the immersed boundary: arc elements, time integration of
+// the marker positions, and periodic wrap of the whole curve.
+//
+// song2019 eq. (105) advances the markers by forward Euler, X^{n+1} = X^n + dt U(X^n).
+// kAdamsBashforth2 is the second-order option  X^{n+1} = X^n + dt (3/2 U^n - 1/2 U^{n-1}),
+// started by one Euler step (no previous velocity). Both use only velocities already
+// interpolated, so one Interpolate per step either way.
+//
+// Periodic wrap: markers are stored UNWRAPPED (the curve stays continuous; ImmersedBoundary wraps
+// node indices). WrapCurveIntoDomain shifts all markers of a curve by the same multiple of the
+// domain width so that their mean x lies in [x0, x0 + width); call it at most once per step,
+// never marker by marker.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "ehd_capsule/geometry/closed_curve.h"
+#include "ehd_capsule/geometry/grid.h"
+
+namespace ehd {
+
+// Arc element of each marker, dl_k = (l_{k-1} + l_k) / 2 with l_k = SegmentArcLength(k): the
+// length that turns a force density at marker k into the force P(X_k) spread by eq. (106).
+std::vector<double> MarkerArcElements(const ClosedCurve& c);
+// Same without allocating (dl resized only if its size differs).
+void MarkerArcElements(const ClosedCurve& c, std::vector<double>& dl);
+
+enum class MarkerIntegrator { kForwardEuler, kAdamsBashforth2 };
+
+class MarkerAdvector {
+ public:
+  explicit MarkerAdvector(MarkerIntegrator scheme = MarkerIntegrator::kForwardEuler)
+      : scheme_(scheme) {}
+  MarkerIntegrator scheme() const { return scheme_; }
+  // X += dt * (scheme's combination of U and the previous call's U). Throws if sizes differ.
+  void Advance(const Eigen::Matrix2Xd& velocity, double dt, Eigen::Matrix2Xd& X);
+  // Forgets the previous velocity (e.g. after remeshing); the next step is Euler.
+  void Reset() { has_previous_ = false; }
+
+ private:
+  MarkerIntegrator scheme_;
+  bool has_previous_ = false;
+  Eigen::Matrix2Xd previous_velocity_;
+};
+
+// Shifts X by an integer number of domain widths so that mean(X.row(0)) is in [x0, x0 + width).
+// Returns the shift applied (0 if none).
+double WrapCurveIntoDomain(const Grid2D& grid, Eigen::Matrix2Xd& X);
+
+}  // namespace ehd

@@ -1,0 +1,74 @@
+// Equivalent-ellipse shape measures, song2019 sec. 4.1 eq. (151); see shape_diagnostics.h.
+#include "ehd_capsule/diagnostics/shape_diagnostics.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace ehd {
+namespace {
+
+// 5-point Gauss-Legendre nodes and weights on [0, 1] (same rule as ClosedCurve::Area).
+constexpr double kGaussNode[5] = {0.046910077030668, 0.230765344947158, 0.5, 0.769234655052842,
+                                  0.953089922969332};
+constexpr double kGaussWeight[5] = {0.118463442528095, 0.239314335249683, 0.284444444444444,
+                                    0.239314335249683, 0.118463442528095};
+
+}  // namespace
+
+ShapeDiagnostics MeasureShape(const ClosedCurve& c) {
+  ShapeDiagnostics d;
+  const int m = c.size();
+  const PeriodicCubicSpline& xs = c.x_spline();
+  const PeriodicCubicSpline& ys = c.y_spline();
+  // Moments about a reference point (the first marker) to limit cancellation; integrals along
+  // the spline parameter; the sign of the area fixes the orientation.
+  const Eigen::Vector2d ref = c.markers().col(0);
+  double a2 = 0.0, mx = 0.0, my = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (int k = 0; k < m; ++k) {
+    const double s0 = c.knot(k);
+    const double s1 = (k + 1 < m) ? c.knot(k + 1) : c.period();
+    for (int q = 0; q < 5; ++q) {
+      const double s = s0 + kGaussNode[q] * (s1 - s0);
+      const double w = kGaussWeight[q] * (s1 - s0);
+      const double x = xs.Value(s) - ref.x(), y = ys.Value(s) - ref.y();
+      const double dx = xs.Derivative(s), dy = ys.Derivative(s);
+      a2 += w * (x * dy - y * dx);
+      mx += w * x * x * dy;             // 2 int x dA
+      my -= w * y * y * dx;             // 2 int y dA
+      sxx += w * x * x * x * dy / 3.0;  // int x^2 dA
+      syy -= w * y * y * y * dx / 3.0;  // int y^2 dA
+      sxy += w * x * x * y * dy / 2.0;  // int x y dA
+    }
+  }
+  const double area = 0.5 * a2;  // signed: > 0 counter-clockwise
+  const double cx = 0.5 * mx / area, cy = 0.5 * my / area;
+  // Central moments (parallel axis theorem); the orientation sign cancels in the ratios.
+  const double ixx = sxx / area - cx * cx;
+  const double iyy = syy / area - cy * cy;
+  const double ixy = sxy / area - cx * cy;
+  d.area = std::abs(area);
+  d.centroid = ref + Eigen::Vector2d(cx, cy);
+  d.length = c.ArcLength();
+  const double mean = 0.5 * (ixx + iyy);
+  const double radius = std::hypot(0.5 * (ixx - iyy), ixy);
+  const double l1 = mean + radius, l2 = std::max(mean - radius, 0.0);
+  const double r1 = std::sqrt(l1), r2 = std::sqrt(l2);
+  d.dxy = (r1 - r2) / (r1 + r2);
+  d.inclination = 0.5 * std::atan2(2.0 * ixy, ixx - iyy);
+  if (d.inclination <= -0.5 * M_PI) d.inclination += M_PI;  // keep (-pi/2, pi/2]
+  // Per unit area the ellipse moments are a^2/4 and b^2/4.
+  d.major_axis = 4.0 * r1;
+  d.minor_axis = 4.0 * r2;
+  return d;
+}
+
+double RelativeAreaDrift(double area, double initial_area) {
+  if (!(initial_area > 0.0)) {
+    throw std::invalid_argument("RelativeAreaDrift: initial_area must be > 0, got " +
+                                std::to_string(initial_area));
+  }
+  return (area - initial_area) / initial_area;
+}
+
+}  // namespace ehd

@@ -1,0 +1,60 @@
+// Marker arc elements, song2019 eq. (105) forward Euler / Adams-Bashforth 2 marker update, and
+// periodic wrap of a whole curve. See marker_update.h.
+#include "ehd_capsule/ib/marker_update.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace ehd {
+
+void MarkerArcElements(const ClosedCurve& c, std::vector<double>& dl) {
+  const int m = c.size();
+  if (static_cast<int>(dl.size()) != m) dl.resize(m);
+  const double last = c.SegmentArcLength(m - 1);
+  double prev = last;
+  for (int k = 0; k < m; ++k) {
+    const double seg = (k + 1 < m) ? c.SegmentArcLength(k) : last;
+    dl[k] = 0.5 * (prev + seg);
+    prev = seg;
+  }
+}
+
+std::vector<double> MarkerArcElements(const ClosedCurve& c) {
+  std::vector<double> dl;
+  MarkerArcElements(c, dl);
+  return dl;
+}
+
+void MarkerAdvector::Advance(const Eigen::Matrix2Xd& velocity, double dt, Eigen::Matrix2Xd& X) {
+  if (velocity.cols() != X.cols()) {
+    throw std::invalid_argument("MarkerAdvector: " + std::to_string(velocity.cols()) +
+                                " velocities for " + std::to_string(X.cols()) + " markers");
+  }
+  if (!(dt > 0.0))
+    throw std::invalid_argument("MarkerAdvector: dt must be > 0, got " + std::to_string(dt));
+  const bool ab2 = scheme_ == MarkerIntegrator::kAdamsBashforth2 && has_previous_ &&
+                   previous_velocity_.cols() == velocity.cols();
+  if (ab2) {
+    X += dt * (1.5 * velocity - 0.5 * previous_velocity_);
+  } else {
+    X += dt * velocity;
+  }
+  if (scheme_ == MarkerIntegrator::kAdamsBashforth2) {
+    previous_velocity_ = velocity;  // same size after the first step: no allocation
+    has_previous_ = true;
+  }
+}
+
+double WrapCurveIntoDomain(const Grid2D& grid, Eigen::Matrix2Xd& X) {
+  if (X.cols() == 0) return 0.0;
+  const double width = grid.width();
+  const double mean_x = X.row(0).mean();
+  const double periods = std::floor((mean_x - grid.x0) / width);
+  if (periods == 0.0) return 0.0;
+  const double shift = -periods * width;
+  X.row(0).array() += shift;
+  return shift;
+}
+
+}  // namespace ehd
