@@ -1,0 +1,113 @@
+// D2Q9 MRT lattice Boltzmann fluid with body force (song2019 sections 3.1.1 and 3.2,
+// eqs. (97)-(99), (107)-(108)) on a Grid2D {nx, ny, h = 1, x0 = -nx/2, y0 = -ny/2}.
+//
+// One Step() is a fused pull stream + collide:
+//   f_i(x, t) = f*_i(x - c_i, t - 1)       (stream; boundaries replace links that leave the box)
+//   f*(x, t)  = MRT collision of f(x, t) with the force F(x) in force_x()/force_y()
+// and writes rho(x, t), u(x, t) = j + F/2 (rho_0 = 1, incompressible equilibria of the reference)
+// at the same time level. So after the n-th Step, populations() holds the post-collision f* of
+// step n and ux()/uy() the velocity of step n consistent with the force that was applied: the
+// velocity an immersed-boundary coupling interpolates to move its markers (song2019 section 3.6).
+//
+// Boundaries: x is always periodic. In y:
+//   kPeriodic   periodic;
+//   kShearWalls half-way bounce-back walls on the edges y = -ny/2 (bottom) and y = +ny/2 (top)
+//               moving in x:  f_i(x) = f*_opp(i)(x) + 6 w_i rho_0 c_i.u_wall  (= f_opp - 2 w rho
+//               c_opp.u_w / c_s^2);
+//   kClosedBox  the same walls at y = +-ny/2 and resting walls at x = +-nx/2 (a closed box; the
+//               y walls still move if wall velocities are set, e.g. a lid-driven cavity).
+#pragma once
+
+#include <vector>
+
+#include "ehd_capsule/geometry/grid.h"
+#include "ehd_capsule/lbm/mrt_collision.h"
+
+namespace ehd {
+
+enum class FluidBoundary { kPeriodic, kShearWalls, kClosedBox };
+
+struct LbmParameters {
+  int nx = 0, ny = 0;
+  double viscosity = 1.0 / 6.0;  // lattice kinematic viscosity nu (tau = 3 nu + 1/2 > 1/2)
+  FluidBoundary boundary = FluidBoundary::kShearWalls;
+  double wall_velocity_bottom = 0, wall_velocity_top = 0;  // x-velocity of the y walls
+  // Non-hydrodynamic relaxation rates, each in (0, 2). Reference numbering (song2019 3.1.1):
+  double s_e = 1.64;        // s_1, energy e (bulk viscosity); not given in the reference, value of
+                            // Lallemand & Luo (2000)
+  double s_epsilon = 1.54;  // s_2, energy square epsilon (reference value)
+  double s_q = 1.9;         // s_4 = s_6, heat fluxes q_x, q_y (reference value)
+  ForcingScheme forcing = ForcingScheme::kSplitMomentum;  // reference eqs. (107)-(108)
+  int threads = 0;                                        // 0: OpenMP default
+};
+
+class LatticeBoltzmann2D {
+ public:
+  // Validates the parameters (throws std::invalid_argument naming parameter, value and range).
+  explicit LatticeBoltzmann2D(const LbmParameters& p);
+
+  Grid2D grid() const;
+  const LbmParameters& parameters() const { return params_; }
+
+  // All initialisers set step() = 0 and store the post-collision state (zero force) of a node
+  // distribution f = f^eq + f^neq whose non-equilibrium stress matches the velocity gradient
+  // (Chapman-Enskog: p_xy^neq = -(rho/(3 s_nu)) (du_x/dy + du_y/dx), likewise p_xx), so a smooth
+  // flow starts without an initial layer.
+  void InitializeAtRest();  // rho = 1, u = 0
+  // u = (k y, 0), rho = 1; with kShearWalls or kClosedBox also sets the wall velocities to
+  // -k ny/2 (bottom) and +k ny/2 (top) so that the shear is held.
+  void InitializeShear(double shear_rate);
+  void InitializeVelocity(const std::vector<double>& ux, const std::vector<double>& uy);
+  void InitializeState(const std::vector<double>& rho, const std::vector<double>& ux,
+                       const std::vector<double>& uy);
+
+  // Body-force density per node (lattice units); the caller fills them before Step. Step does
+  // not clear them.
+  std::vector<double>& force_x() { return force_x_; }
+  std::vector<double>& force_y() { return force_y_; }
+  const std::vector<double>& force_x() const { return force_x_; }
+  const std::vector<double>& force_y() const { return force_y_; }
+  void ClearForce();
+
+  // Per-node kinematic viscosity (viscosity contrast); each value finite and > 0 (tau > 1/2).
+  void SetViscosityField(const std::vector<double>& nu);
+  void ClearViscosityField();  // back to the uniform parameters().viscosity
+  bool has_viscosity_field() const { return variable_viscosity_; }
+
+  void SetWallVelocities(double bottom, double top);  // takes effect at the next Step
+
+  void Step();  // stream + collide (with forcing) + boundaries; updates rho/ux/uy
+
+  const std::vector<double>& rho() const { return rho_; }
+  const std::vector<double>& ux() const { return ux_; }
+  const std::vector<double>& uy() const { return uy_; }
+  double MaxSpeed() const;  // max |u|
+  bool AllFinite() const;   // every population finite
+
+  // Checkpoint/restart: the post-collision populations, layout f[q * nx * ny + node]
+  // (q = velocity index of d2q9.h, node = j nx + i). SetPopulations recomputes rho and
+  // u = j* - F/2 (j* = j + F of the stored f*) with the current force arrays; Step continues
+  // bit-for-bit. SetStep restores the step counter.
+  const std::vector<double>& populations() const { return *current_; }
+  void SetPopulations(const std::vector<double>& f);
+  void SetStep(long step) { step_ = step; }
+  long step() const { return step_; }
+
+ private:
+  void CheckNodeField(const std::vector<double>& v, const char* name) const;
+  void CollideInPlaceWithoutForce();
+  void StreamCollide();
+
+  LbmParameters params_;
+  std::size_t n_ = 0;
+  std::vector<double> buffer_a_, buffer_b_;
+  std::vector<double>* current_ = &buffer_a_;  // post-collision f* of the last step
+  std::vector<double>* next_ = &buffer_b_;
+  std::vector<double> force_x_, force_y_;
+  std::vector<double> s_nu_field_;  // per-node shear rate, used when variable_viscosity_
+  bool variable_viscosity_ = false;
+  std::vector<double> rho_, ux_, uy_;
+  long step_ = 0;
+};
+
+}  // namespace ehd
