@@ -1,0 +1,92 @@
+// Fast immersed interface method for div(sigma grad phi) = f with [phi] = w, [sigma phi_n] = v
+// (song2019 sec. 2.4, Z. Li's augmented approach; relations corrected in notes/fast-iim.md).
+//
+// Augmented unknown G = [phi_n] at the M markers. For a given G:
+//   L Phi = F + C(W, G)                                          eq. (45)-(47)
+// L the 5-point Laplacian (FastPoissonSolver), F = f/sigma of each point's region, and at an
+// irregular point x_ij the correction C_ij = (1/h^2) sum_k s_k J(x_k) over the stencil neighbours
+// x_k across the curve (s_k = +1 if x_ij is inside and x_k outside, -1 the other way), with J the
+// jump expansion of jump_relations.h about x_k's closest curve point (G enters through its
+// periodic spline). phi_n^- at the markers comes from the weighted least-squares quadratic fit
+// (normal_derivative_fit.h) and phi_n^+ = phi_n^- + G, eq. (87). The Schur system (57) is the
+// scaled flux residual of Xu (eq. (49)-(50)), which equals ([sigma phi_n] - v) / [sigma]:
+//   sigma^+ > sigma^-:  R = phi_n^- + (sigma^+/[sigma]) G - v/[sigma]
+//   sigma^- > sigma^+:  R = phi_n^+ + (sigma^-/[sigma]) G - v/[sigma]
+// R is affine in G; restarted GMRES solves R(G) = 0 with the mat-vec R(G) - R(0), one Poisson
+// solve each (eq. (59)-(61)). sigma^+ = sigma^-: G = v / sigma is known and no GMRES is run.
+// [f/sigma] in J is estimated at the markers from the grid (weighted side averages, O(h), which
+// is enough since it multiplies d^2 = O(h^2)).
+//
+// Cost per Solve: classification and fit set-up O(M + band), then (iterations + 2) Poisson
+// solves (+1 with a non-zero initial guess). Non-convergence throws SolverError.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "ehd_capsule/electric/fast_poisson_solver.h"
+#include "ehd_capsule/electric/gmres.h"
+#include "ehd_capsule/electric/interface_classification.h"
+#include "ehd_capsule/electric/interface_problem.h"
+#include "ehd_capsule/electric/normal_derivative_fit.h"
+#include "ehd_capsule/geometry/closed_curve.h"
+
+namespace ehd {
+
+struct FastIimOptions {
+  GmresOptions gmres;
+  double fit_radius_h = 3.0;  // WLS fit radius alpha in units of h
+  double band_width_h = 3.5;  // closest points are found for |d| < band_width_h * h
+};
+
+class FastIimSolver {
+ public:
+  FastIimSolver(const Grid2D& grid, const PoissonBoundaries& bc,
+                const FastIimOptions& options = FastIimOptions());
+
+  // Solves the problem for the curve. g: on entry the initial guess for [phi_n] at the markers
+  // (any size other than M means a zero guess), on exit the solution. phi: grid solution.
+  // Throws std::invalid_argument for inconsistent sizes or sigma <= 0, SolverError if GMRES
+  // does not reach the tolerance.
+  InterfaceSolveReport Solve(const ClosedCurve& curve, const InterfaceProblem& problem,
+                             std::vector<double>& g, std::vector<double>& phi);
+
+  // Marker derivatives of the last solution: phi_n^-, phi_n^+ and the derivatives along the
+  // counter-clockwise tangent phi_tau^-, phi_tau^+ = phi_tau^- + w'.
+  const std::vector<double>& normal_derivative_minus() const { return dn_minus_; }
+  const std::vector<double>& normal_derivative_plus() const { return dn_plus_; }
+  const std::vector<double>& tangential_derivative_minus() const { return dt_minus_; }
+  const std::vector<double>& tangential_derivative_plus() const { return dt_plus_; }
+  // Jump J = phi^+_ext - phi^-_ext at the band points for the last solution.
+  const std::vector<double>& band_jump() const { return band_jump_; }
+  const InterfaceClassification& classification() const { return classes_; }
+  const NormalDerivativeFit& fit() const { return fit_; }
+  const Grid2D& grid() const { return poisson_.grid(); }
+  const FastIimOptions& options() const { return options_; }
+  void set_options(const FastIimOptions& options) { options_ = options; }
+  // Number of Poisson solves in the last Solve().
+  int poisson_solves() const { return poisson_solves_; }
+
+ private:
+  // Residual R(g) (with_data) or its linear part R(g) - R(0) (without), into r.
+  void Residual(const ClosedCurve& curve, const double* g, bool with_data, double* r);
+  // Fills band_jump_ for g (plus the data part if with_data) and solves for phi.
+  void SolveForPotential(const ClosedCurve& curve, const double* g, bool with_data,
+                         std::vector<double>& phi);
+
+  FastPoissonSolver poisson_;
+  FastIimOptions options_;
+  InterfaceClassification classes_;
+  NormalDerivativeFit fit_;
+  RestartedGmres gmres_;
+  double sigma_minus_ = 1.0, sigma_plus_ = 1.0;
+  std::vector<double> v_;         // [sigma phi_n] at the markers
+  std::vector<double> rhs_base_;  // F + side data
+  std::vector<double> rhs_, phi_work_;
+  std::vector<double> band_data_, band_gcoef_, band_jump_;
+  std::vector<double> dn_minus_, dn_plus_, dt_minus_, dt_plus_, w_s_;
+  std::vector<double> scratch_;
+  int poisson_solves_ = 0;
+};
+
+}  // namespace ehd

@@ -1,0 +1,52 @@
+// Weighted least-squares interpolation of phi_n^- and phi_eta^- at the markers from grid values
+// (song2019 sec. 2.4.2, eq. (66)-(87), written as a fit as in notes/fast-iim.md).
+//
+// At marker X_c with unit normal n and tangent t, take the grid points x within alpha of X_c,
+// local coordinates xi = (x - X_c).n, eta = (x - X_c).t, and fit
+//   p(xi, eta) = c0 + c1 xi + c2 eta + c3 xi^2/2 + c4 xi eta + c5 eta^2/2
+// to the values of the minus-side extension: phi(x) for x in Omega^-, phi(x) - J(x) for x in
+// Omega^+ (J from jump_relations.h), with weights d_alpha(r) = (1 + cos(pi r / alpha)) / 2,
+// eq. (67). Then phi_n^- = c1, phi_eta^- = c2, phi_n^+ = phi_n^- + g (eq. (87)). The quadratic
+// fit makes the first derivatives O(h^2) (a linear fit would lose the method's second order).
+// The fit's rows gamma_xi, gamma_eta (c1 = sum gamma_xi,i value_i) are computed once per curve.
+#pragma once
+
+#include <vector>
+
+#include "ehd_capsule/electric/interface_classification.h"
+#include "ehd_capsule/geometry/closed_curve.h"
+
+namespace ehd {
+
+class NormalDerivativeFit {
+ public:
+  // radius alpha (>= 2 h and <= the classification's band width). Throws std::invalid_argument
+  // for a bad radius and std::runtime_error if a marker's fit is rank deficient.
+  void Update(const ClosedCurve& curve, const InterfaceClassification& classes, double radius);
+
+  // phi_n^- and phi_eta^- (derivative along the counter-clockwise tangent) at every marker.
+  // band_jump holds J at every band point (only the outside ones are read).
+  void Evaluate(const double* phi, const double* band_jump, double* dn_minus,
+                double* dt_minus) const;
+  // Same for the normal derivative only.
+  void EvaluateNormal(const double* phi, const double* band_jump, double* dn_minus) const;
+
+  // Weighted averages, over each side's fit points of every marker, of a grid field (used for
+  // the O(h) estimate of [f/sigma] at the markers). Sides without points give 0.
+  void SideAverages(const double* field, double* minus_average, double* plus_average) const;
+
+  int markers() const { return static_cast<int>(offset_.size()) - 1; }
+  // Entries of marker k: [offset(k), offset(k+1)).
+  int offset(int k) const { return offset_[k]; }
+  const std::vector<int>& points() const { return point_; }
+  const std::vector<double>& gamma_xi() const { return gamma_xi_; }
+  const std::vector<double>& gamma_eta() const { return gamma_eta_; }
+
+ private:
+  std::vector<int> offset_;
+  std::vector<int> point_;      // grid index
+  std::vector<int> plus_slot_;  // band slot if the point is outside, -1 inside
+  std::vector<double> gamma_xi_, gamma_eta_, weight_;
+};
+
+}  // namespace ehd

@@ -1,0 +1,178 @@
+// Fast immersed interface method (song2019 sec. 2.4; see fast_iim_solver.h for the equations).
+#include "ehd_capsule/electric/fast_iim_solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "ehd_capsule/electric/jump_relations.h"
+
+namespace ehd {
+
+FastIimSolver::FastIimSolver(const Grid2D& grid, const PoissonBoundaries& bc,
+                             const FastIimOptions& options)
+    : poisson_(grid, bc), options_(options) {
+  rhs_base_.resize(grid.size());
+  rhs_.resize(grid.size());
+  phi_work_.resize(grid.size());
+}
+
+void FastIimSolver::SolveForPotential(const ClosedCurve& curve, const double* g, bool with_data,
+                                      std::vector<double>& phi) {
+  const int m = curve.size();
+  scratch_.assign(g, g + m);
+  const PeriodicCubicSpline gs = curve.FitScalar(scratch_);
+  const std::vector<double>& bs = classes_.band_parameter();
+  const int nb = classes_.band_size();
+  for (int b = 0; b < nb; ++b) {
+    band_jump_[b] = (with_data ? band_data_[b] : 0.0) + gs.Value(bs[b]) * band_gcoef_[b];
+  }
+  if (with_data) {
+    rhs_ = rhs_base_;
+  } else {
+    std::fill(rhs_.begin(), rhs_.end(), 0.0);
+  }
+  const double inv_h2 = 1.0 / (grid().h * grid().h);
+  for (const auto& p : classes_.crossing_pairs()) {
+    rhs_[p.centre] += p.neighbour_side * band_jump_[p.neighbour_slot] * inv_h2;
+  }
+  poisson_.Solve(rhs_, phi);
+  ++poisson_solves_;
+}
+
+void FastIimSolver::Residual(const ClosedCurve& curve, const double* g, bool with_data, double* r) {
+  SolveForPotential(curve, g, with_data, phi_work_);
+  const int m = curve.size();
+  fit_.EvaluateNormal(phi_work_.data(), band_jump_.data(), dn_minus_.data());
+  const double jump = sigma_plus_ - sigma_minus_;
+  for (int k = 0; k < m; ++k) {
+    const double data = with_data ? v_[k] / jump : 0.0;
+    if (sigma_plus_ > sigma_minus_) {
+      r[k] = dn_minus_[k] + (sigma_plus_ / jump) * g[k] - data;  // eq. (50)
+    } else {
+      r[k] = (dn_minus_[k] + g[k]) + (sigma_minus_ / jump) * g[k] - data;  // eq. (49)
+    }
+  }
+}
+
+InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const InterfaceProblem& problem,
+                                          std::vector<double>& g, std::vector<double>& phi) {
+  const auto start = std::chrono::steady_clock::now();
+  const Grid2D& grid = poisson_.grid();
+  const int m = curve.size();
+  if (!(problem.sigma_minus > 0.0) || !(problem.sigma_plus > 0.0)) {
+    throw std::invalid_argument("FastIimSolver: sigma_minus and sigma_plus must be > 0, got " +
+                                std::to_string(problem.sigma_minus) + " and " +
+                                std::to_string(problem.sigma_plus));
+  }
+  if (!problem.f.empty() && problem.f.size() != grid.size()) {
+    throw std::invalid_argument("FastIimSolver: problem.f has " + std::to_string(problem.f.size()) +
+                                " values, grid has " + std::to_string(grid.size()));
+  }
+  auto check_marker_size = [m](const std::vector<double>& x, const char* name) {
+    if (!x.empty() && static_cast<int>(x.size()) != m) {
+      throw std::invalid_argument(std::string("FastIimSolver: problem.") + name + " has " +
+                                  std::to_string(x.size()) + " values, curve has " +
+                                  std::to_string(m) + " markers");
+    }
+  };
+  check_marker_size(problem.w, "w");
+  check_marker_size(problem.v, "v");
+  poisson_solves_ = 0;
+  sigma_minus_ = problem.sigma_minus;
+  sigma_plus_ = problem.sigma_plus;
+
+  // Geometry: sides, band, crossing pairs, fit rows.
+  const double h = grid.h;
+  classes_.Update(grid, curve, options_.band_width_h * h);
+  fit_.Update(curve, classes_, options_.fit_radius_h * h);
+  const int nb = classes_.band_size();
+  band_data_.resize(nb);
+  band_gcoef_.resize(nb);
+  band_jump_.resize(nb);
+  dn_minus_.resize(m);
+  dn_plus_.resize(m);
+  dt_minus_.resize(m);
+  dt_plus_.resize(m);
+  w_s_.resize(m);
+  v_.assign(m, 0.0);
+  if (!problem.v.empty()) v_ = problem.v;
+
+  // F = f / sigma of each region, plus the side data.
+  for (std::size_t idx = 0; idx < grid.size(); ++idx) {
+    const double f = problem.f.empty() ? 0.0 : problem.f[idx];
+    rhs_base_[idx] = f / (classes_.side(idx) < 0 ? sigma_minus_ : sigma_plus_);
+  }
+  // [f/sigma] at the markers (O(h) side averages), then the data part of J at band points.
+  std::vector<double>& fm = dn_plus_;  // reuse marker buffers as scratch
+  std::vector<double>& fp = dt_plus_;
+  fit_.SideAverages(rhs_base_.data(), fm.data(), fp.data());
+  for (int k = 0; k < m; ++k) fm[k] = fp[k] - fm[k];
+  const PeriodicCubicSpline fjump = curve.FitScalar(fm);
+  const bool has_w = !problem.w.empty();
+  PeriodicCubicSpline ws;
+  if (has_w) ws = curve.FitScalar(problem.w);
+  const std::vector<double>& bs = classes_.band_parameter();
+  const std::vector<double>& bd = classes_.band_distance();
+  const std::vector<double>& bk = classes_.band_curvature();
+  for (int b = 0; b < nb; ++b) {
+    double w = 0.0, w_s = 0.0, w_ss = 0.0;
+    if (has_w) {
+      w = ws.Value(bs[b]);
+      curve.ArcLengthDerivatives(ws, bs[b], &w_s, &w_ss);
+    }
+    band_data_[b] = JumpDataPart(w, w_ss, fjump.Value(bs[b]), bd[b]);
+    band_gcoef_[b] = JumpGCoefficient(bd[b], bk[b]);
+  }
+  for (int k = 0; k < m; ++k) {
+    double w_ss = 0.0;
+    w_s_[k] = 0.0;
+    if (has_w) curve.ArcLengthDerivatives(ws, curve.knot(k), &w_s_[k], &w_ss);
+  }
+  AddBoundaryDataToRhs(grid, poisson_.boundaries(), problem.boundary, rhs_base_);
+
+  InterfaceSolveReport report;
+  if (sigma_plus_ == sigma_minus_) {
+    // [phi_n] = v / sigma is known: one solve.
+    g.resize(m);
+    for (int k = 0; k < m; ++k) g[k] = v_[k] / sigma_plus_;
+    report.converged = true;
+  } else {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(m);
+    if (static_cast<int>(g.size()) == m) x = Eigen::Map<const Eigen::VectorXd>(g.data(), m);
+    Eigen::VectorXd b(m);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(m);
+    Residual(curve, zero.data(), true, b.data());
+    b = -b;
+    auto apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+      out.resize(m);
+      Residual(curve, in.data(), false, out.data());
+    };
+    const GmresResult r = gmres_.Solve(apply, b, x, options_.gmres);
+    report.iterations = r.iterations;
+    report.residual = r.residual;
+    report.converged = r.converged;
+    if (!r.converged) {
+      std::ostringstream msg;
+      msg << "FastIimSolver: GMRES did not converge: " << r.iterations << " iterations, residual "
+          << r.residual << " > tolerance " << options_.gmres.tolerance
+          << " x |b| = " << options_.gmres.tolerance * r.reference << " (sigma- = " << sigma_minus_
+          << ", sigma+ = " << sigma_plus_ << ", " << m << " markers)";
+      throw SolverError(msg.str());
+    }
+    g.assign(x.data(), x.data() + m);
+  }
+  SolveForPotential(curve, g.data(), true, phi);
+  fit_.Evaluate(phi.data(), band_jump_.data(), dn_minus_.data(), dt_minus_.data());
+  for (int k = 0; k < m; ++k) {
+    dn_plus_[k] = dn_minus_[k] + g[k];
+    dt_plus_[k] = dt_minus_[k] + w_s_[k];
+  }
+  report.solve_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace ehd

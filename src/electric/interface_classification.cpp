@@ -1,0 +1,149 @@
+// Inside/outside, regular/irregular classification and closest curve points of the grid points
+// near the interface (see interface_classification.h).
+#include "ehd_capsule/electric/interface_classification.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace ehd {
+
+void InterfaceClassification::Update(const Grid2D& grid, const ClosedCurve& curve,
+                                     double band_width) {
+  const double h = grid.h;
+  if (!(band_width >= 1.5 * h)) {
+    throw std::invalid_argument("InterfaceClassification: band_width must be >= 1.5 h = " +
+                                std::to_string(1.5 * h) + ", got " + std::to_string(band_width));
+  }
+  if (curve.size() < 3) {
+    throw std::invalid_argument("InterfaceClassification: curve needs >= 3 markers");
+  }
+  grid_ = grid;
+  band_width_ = band_width;
+  const std::size_t n = grid.size();
+  if (side_.size() != n) {
+    touched_.clear();
+    irregular_points_.clear();
+    side_.assign(n, 1);
+    irregular_flag_.assign(n, 0);
+    band_slot_.assign(n, -1);
+    best_d2_.assign(n, std::numeric_limits<double>::infinity());
+    best_s_.assign(n, 0.0);
+  }
+  // Reset what the previous call touched.
+  for (int idx : touched_) {
+    best_d2_[idx] = std::numeric_limits<double>::infinity();
+    band_slot_[idx] = -1;
+  }
+  for (int idx : irregular_points_) irregular_flag_[idx] = 0;
+  touched_.clear();
+  irregular_points_.clear();
+  band_points_.clear();
+  band_s_.clear();
+  band_d_.clear();
+  band_kappa_.clear();
+  pairs_.clear();
+
+  // 1. Candidates: nearest spline sample within band_width + h.
+  const PeriodicCubicSpline& xs = curve.x_spline();
+  const PeriodicCubicSpline& ys = curve.y_spline();
+  const double reach = band_width + h;
+  const int m = curve.size();
+  for (int k = 0; k < m; ++k) {
+    const double s0 = curve.knot(k);
+    const double s1 = (k + 1 < m) ? curve.knot(k + 1) : curve.period();
+    const int samples = std::max(2, static_cast<int>(std::ceil((s1 - s0) / (0.5 * h))));
+    for (int q = 0; q < samples; ++q) {
+      const double s = s0 + (s1 - s0) * q / samples;
+      const double px = xs.Value(s), py = ys.Value(s);
+      const int i0 = std::max(0, static_cast<int>(std::ceil((px - reach - grid.x0) / h - 0.5)));
+      const int i1 =
+          std::min(grid.nx - 1, static_cast<int>(std::floor((px + reach - grid.x0) / h - 0.5)));
+      const int j0 = std::max(0, static_cast<int>(std::ceil((py - reach - grid.y0) / h - 0.5)));
+      const int j1 =
+          std::min(grid.ny - 1, static_cast<int>(std::floor((py + reach - grid.y0) / h - 0.5)));
+      for (int j = j0; j <= j1; ++j) {
+        for (int i = i0; i <= i1; ++i) {
+          const int idx = static_cast<int>(grid.index(i, j));
+          const double dx = grid.x(i) - px, dy = grid.y(j) - py;
+          const double d2 = dx * dx + dy * dy;
+          if (d2 < best_d2_[idx]) {
+            if (best_d2_[idx] == std::numeric_limits<double>::infinity()) touched_.push_back(idx);
+            best_d2_[idx] = d2;
+            best_s_[idx] = s;
+          }
+        }
+      }
+    }
+  }
+  // 2. Newton refinement of the closest point; keep |d| < band_width.
+  const double period = curve.period();
+  const double max_step = 0.5 * h;
+  for (int idx : touched_) {
+    const int i = idx % grid.nx, j = idx / grid.nx;
+    const Eigen::Vector2d p(grid.x(i), grid.y(j));
+    double s = best_s_[idx];
+    for (int it = 0; it < 12; ++it) {
+      const Eigen::Vector2d x(xs.Value(s), ys.Value(s));
+      const Eigen::Vector2d d1(xs.Derivative(s), ys.Derivative(s));
+      const Eigen::Vector2d d2(xs.SecondDerivative(s), ys.SecondDerivative(s));
+      const double g = (x - p).dot(d1);
+      const double dg = d1.squaredNorm() + (x - p).dot(d2);
+      if (!(dg > 0.0)) break;
+      const double step = std::clamp(g / dg, -max_step, max_step);
+      s -= step;
+      if (std::abs(step) < 1e-13 * period) break;
+    }
+    s = std::fmod(s, period);
+    if (s < 0.0) s += period;
+    const CurvePoint c = curve.At(s);
+    const double d = (p - c.position).dot(c.normal);
+    if (std::abs(d) >= band_width) continue;
+    band_slot_[idx] = static_cast<int>(band_points_.size());
+    band_points_.push_back(idx);
+    band_s_.push_back(s);
+    band_d_.push_back(d);
+    band_kappa_.push_back(c.curvature);
+  }
+  // 3. Sides: sign of d in the band, row scan elsewhere.
+  for (int j = 0; j < grid.ny; ++j) {
+    int current = 0;
+    for (int i = 0; i < grid.nx; ++i) {
+      const std::size_t idx = grid.index(i, j);
+      const int slot = band_slot_[idx];
+      if (slot >= 0) {
+        current = band_d_[slot] < 0.0 ? -1 : 1;
+      } else if (current == 0) {
+        current = curve.Contains(Eigen::Vector2d(grid.x(i), grid.y(j))) ? -1 : 1;
+      }
+      side_[idx] = static_cast<std::int8_t>(current);
+    }
+  }
+  // 4. Irregular points and crossing stencil pairs (only band points can have them).
+  for (int idx : band_points_) {
+    const int i = idx % grid.nx, j = idx / grid.nx;
+    const int me = side_[idx];
+    const int nbr[4][2] = {{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}};
+    bool irregular = false;
+    for (const auto& q : nbr) {
+      if (q[0] < 0 || q[0] >= grid.nx || q[1] < 0 || q[1] >= grid.ny) continue;
+      const int nidx = static_cast<int>(grid.index(q[0], q[1]));
+      if (side_[nidx] == me) continue;
+      irregular = true;
+      const int slot = band_slot_[nidx];
+      if (slot < 0) {
+        throw std::runtime_error(
+            "InterfaceClassification: a neighbour across the curve is outside the band "
+            "(curve under-resolved by its markers?)");
+      }
+      pairs_.push_back(CrossingPair{idx, slot, side_[nidx]});
+    }
+    if (irregular) {
+      irregular_flag_[idx] = 1;
+      irregular_points_.push_back(idx);
+    }
+  }
+}
+
+}  // namespace ehd
