@@ -56,8 +56,8 @@ LatticeBoltzmann2D::LatticeBoltzmann2D(const LbmParameters& p) : params_(p) {
                                 " must be >= 0 (0: OpenMP default)");
   }
   n_ = static_cast<std::size_t>(p.nx) * static_cast<std::size_t>(p.ny);
-  buffer_a_.assign(d2q9::kQ * n_, 0.0);
-  buffer_b_.assign(d2q9::kQ * n_, 0.0);
+  buffers_[0].assign(d2q9::kQ * n_, 0.0);
+  buffers_[1].assign(d2q9::kQ * n_, 0.0);
   force_x_.assign(n_, 0.0);
   force_y_.assign(n_, 0.0);
   rho_.assign(n_, 1.0);
@@ -125,7 +125,7 @@ void LatticeBoltzmann2D::InitializeState(const std::vector<double>& rho,
     if (k == n_dir - 1) return at(k) - at(k - 1);
     return 0.5 * (at(k + 1) - at(k - 1));
   };
-  std::vector<double>& f = *current_;
+  std::vector<double>& f = current();
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       const std::size_t node = static_cast<std::size_t>(j) * nx + i;
@@ -153,7 +153,7 @@ void LatticeBoltzmann2D::InitializeState(const std::vector<double>& rho,
 }
 
 void LatticeBoltzmann2D::CollideInPlaceWithoutForce() {
-  std::vector<double>& f = *current_;
+  std::vector<double>& f = current();
   const MrtRates rates{params_.s_e, params_.s_epsilon, params_.s_q};
   const double s_nu_uniform = d2q9::ShearRateFromViscosity(params_.viscosity);
   for (std::size_t node = 0; node < n_; ++node) {
@@ -201,7 +201,7 @@ void LatticeBoltzmann2D::SetWallVelocities(double bottom, double top) {
 
 void LatticeBoltzmann2D::Step() {
   StreamCollide();
-  std::swap(current_, next_);
+  current_index_ = 1 - current_index_;
   ++step_;
 }
 
@@ -212,7 +212,7 @@ double LatticeBoltzmann2D::MaxSpeed() const {
 }
 
 bool LatticeBoltzmann2D::AllFinite() const {
-  for (double v : *current_) {
+  for (double v : current()) {
     if (!std::isfinite(v)) return false;
   }
   return true;
@@ -224,7 +224,7 @@ void LatticeBoltzmann2D::SetPopulations(const std::vector<double>& f) {
     m << "SetPopulations: " << f.size() << " values; expected 9 * nx * ny = " << d2q9::kQ * n_;
     throw std::invalid_argument(m.str());
   }
-  *current_ = f;
+  current() = f;
   for (std::size_t node = 0; node < n_; ++node) {
     double r = 0.0, jx = 0.0, jy = 0.0;
     for (int q = 0; q < d2q9::kQ; ++q) {

@@ -141,8 +141,8 @@ void StreamCollideRows(const KernelArgs& a, int threads) {
 
 void LatticeBoltzmann2D::StreamCollide() {
   KernelArgs a;
-  a.src = current_->data();
-  a.dst = next_->data();
+  a.src = current().data();
+  a.dst = next().data();
   a.nx = params_.nx;
   a.ny = params_.ny;
   a.n = n_;

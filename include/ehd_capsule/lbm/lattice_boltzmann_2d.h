@@ -88,7 +88,7 @@ class LatticeBoltzmann2D {
   // (q = velocity index of d2q9.h, node = j nx + i). SetPopulations recomputes rho and
   // u = j* - F/2 (j* = j + F of the stored f*) with the current force arrays; Step continues
   // bit-for-bit. SetStep restores the step counter.
-  const std::vector<double>& populations() const { return *current_; }
+  const std::vector<double>& populations() const { return current(); }
   void SetPopulations(const std::vector<double>& f);
   void SetStep(long step) { step_ = step; }
   long step() const { return step_; }
@@ -100,9 +100,13 @@ class LatticeBoltzmann2D {
 
   LbmParameters params_;
   std::size_t n_ = 0;
-  std::vector<double> buffer_a_, buffer_b_;
-  std::vector<double>* current_ = &buffer_a_;  // post-collision f* of the last step
-  std::vector<double>* next_ = &buffer_b_;
+  // Two population buffers; the index (not a pointer) keeps the class copyable and movable.
+  std::vector<double>& current() { return buffers_[current_index_]; }
+  const std::vector<double>& current() const { return buffers_[current_index_]; }
+  std::vector<double>& next() { return buffers_[1 - current_index_]; }
+
+  std::vector<double> buffers_[2];
+  int current_index_ = 0;  // buffers_[current_index_] holds the post-collision f* of the last step
   std::vector<double> force_x_, force_y_;
   std::vector<double> s_nu_field_;  // per-node shear rate, used when variable_viscosity_
   bool variable_viscosity_ = false;
