@@ -15,7 +15,10 @@ constexpr double kGauss4Node[4] = {-0.861136311594052575, -0.339981043584856265,
                                    0.339981043584856265, 0.861136311594052575};
 constexpr double kGauss4Weight[4] = {0.347854845137453857, 0.652145154862546143,
                                      0.652145154862546143, 0.347854845137453857};
-constexpr int kBisections = 50;
+// Bisection steps locating where the curve leaves the diamond or the patch: the bracket shrinks
+// from the walking step h/4 to ~1e-5 h. The ends only bound the quadrature interval and the
+// bounding box, so this precision is ample (exact data stay exact on any sub-interval).
+constexpr int kBisections = 15;
 // Smallest half side of a patch relative to its largest (see the header).
 constexpr double kMinAspect = 0.25;
 
@@ -68,7 +71,7 @@ double CfmLocalClosestParameter(const ClosedCurve& curve, const Eigen::Vector2d&
     if (!(dg > 0.25 * d1.squaredNorm())) dg = d1.squaredNorm();  // keep a descent step
     const double step = std::clamp(g / dg, -limit, limit);
     s -= step;
-    if (std::abs(step) < 1e-15 * curve.period()) break;
+    if (std::abs(step) < 1e-13 * curve.period()) break;
   }
   return s;
 }
@@ -89,12 +92,25 @@ bool BuildCfmStencilPatch(const ClosedCurve& curve, const Eigen::Vector2d& cente
     double s_far = s;
     const double side_far = SideValue(curve, far_nodes[k], &s_far);
     if ((side_center < 0.0) == (side_far < 0.0)) continue;
-    double t_near = 0.0, t_far = 1.0;
+    // Illinois (modified regula falsi) on the side function along the arm x(t), t in [0, 1].
+    double t_a = 0.0, f_a = side_center, t_b = 1.0, f_b = side_far;
     double s_mid = s;
-    for (int it = 0; it < kBisections; ++it) {
-      const double t = 0.5 * (t_near + t_far);
+    int last_kept = 0;
+    for (int it = 0; it < 60; ++it) {
+      const double t = (t_a * f_b - t_b * f_a) / (f_b - f_a);
       const double side = SideValue(curve, center + t * (far_nodes[k] - center), &s_mid);
-      ((side < 0.0) == (side_center < 0.0) ? t_near : t_far) = t;
+      if (std::abs(side) <= 1e-10 * h || t_b - t_a <= 1e-12) break;
+      if ((side < 0.0) == (f_a < 0.0)) {
+        t_a = t;
+        f_a = side;
+        if (last_kept == -1) f_b *= 0.5;
+        last_kept = -1;
+      } else {
+        t_b = t;
+        f_b = side;
+        if (last_kept == 1) f_a *= 0.5;
+        last_kept = 1;
+      }
     }
     s_cross = s_mid;
     found = true;
@@ -102,8 +118,8 @@ bool BuildCfmStencilPatch(const ClosedCurve& curve, const Eigen::Vector2d& cente
   if (!found) return false;
 
   // 2. Sigma_ij: the piece through the crossing inside the stencil's diamond.
-  const double step = 0.125 * h;
-  const int max_steps = 64;
+  const double step = 0.25 * h;
+  const int max_steps = 32;
   const auto in_diamond = [&](const Eigen::Vector2d& x) {
     return std::abs(x.x() - center.x()) + std::abs(x.y() - center.y()) <= h * (1.0 + 1e-12);
   };

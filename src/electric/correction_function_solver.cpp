@@ -2,6 +2,8 @@
 // the sign of the correction C_ij and how [f] is continued across the interface.
 #include "ehd_capsule/electric/correction_function_solver.h"
 
+#include <omp.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
@@ -27,7 +29,11 @@ CfmLocalCauchy MakeCauchy(const CorrectionFunctionOptions& options) {
 
 CorrectionFunctionSolver::CorrectionFunctionSolver(const Grid2D& grid, const PoissonBoundaries& bc,
                                                    const CorrectionFunctionOptions& options)
-    : grid_(grid), bc_(bc), options_(options), poisson_(grid, bc), cauchy_(MakeCauchy(options)) {
+    : grid_(grid),
+      bc_(bc),
+      options_(options),
+      poisson_(grid, bc),
+      cauchy_(static_cast<std::size_t>(std::max(1, omp_get_max_threads())), MakeCauchy(options)) {
   if (options_.interface_subintervals == 0) {
     options_.interface_subintervals = options_.basis == CfmBasis::kBicubic ? 3 : 1;
   }
@@ -43,6 +49,7 @@ CorrectionFunctionSolver::CorrectionFunctionSolver(const Grid2D& grid, const Poi
   near_.assign(grid.size(), 0);
   rhs_.assign(grid.size(), 0.0);
   correction_.assign(grid.size(), 0.0);
+  irregular_.reserve(8 * static_cast<std::size_t>(grid.nx + grid.ny));
   row_crossings_.resize(grid.ny);
   for (auto& row : row_crossings_) row.reserve(16);
 }
@@ -154,6 +161,45 @@ void CorrectionFunctionSolver::JumpOfSource(const std::vector<double>& f, int i,
   }
 }
 
+bool CorrectionFunctionSolver::CorrectStencil(const ClosedCurve& curve,
+                                              const std::vector<double>& f, double sigma, int index,
+                                              CfmLocalCauchy& cauchy) {
+  const Grid2D& g = grid_;
+  const int i = index % g.nx, j = index / g.nx;
+  const char side = inside_[index];
+  Eigen::Vector2d far[4];
+  int n_far = 0;
+  for (int k = 0; k < 4; ++k) {
+    const int ii = i + kDi[k], jj = j + kDj[k];
+    if (ii < 0 || ii >= g.nx || jj < 0 || jj >= g.ny) continue;
+    if (inside_[g.index(ii, jj)] != side) far[n_far++] = {g.x(ii), g.y(jj)};
+  }
+  const Eigen::Vector2d center(g.x(i), g.y(j));
+  const double s_hint = near_[index] ? hint_[index] : curve.ClosestParameter(center);
+  CfmStencilPatch stencil_patch;
+  if (!BuildCfmStencilPatch(curve, center, g.h, far, n_far, s_hint, &stencil_patch)) {
+    return false;
+  }
+  CfmInterfaceSample samples[CfmLocalCauchy::kMaxInterfaceSamples];
+  double parameters[CfmLocalCauchy::kMaxInterfaceSamples];
+  const int n_samples = CfmInterfaceQuadrature(
+      curve, stencil_patch, options_.interface_subintervals, samples, parameters);
+  for (int q = 0; q < n_samples; ++q) {
+    samples[q].jump_value = jump_value_.Value(parameters[q]);
+    samples[q].jump_normal = jump_normal_.Value(parameters[q]);
+  }
+  const auto area_points = CfmLocalCauchy::AreaPoints(stencil_patch.patch);
+  double f_jump[CfmLocalCauchy::kAreaPoints] = {};
+  if (!f.empty()) JumpOfSource(f, i, j, sigma, area_points.data(), f_jump);
+  if (!cauchy.Solve(stencil_patch.patch, f_jump, samples, n_samples)) return false;
+  // s_k = +1 if x_ij in Omega^- (then phi(x_k) = phi^+ = phi^-_ext + D), else -1.
+  const double sign = side ? 1.0 : -1.0;
+  double c = 0.0;
+  for (int k = 0; k < n_far; ++k) c += sign * cauchy.Value(far[k]);
+  correction_[index] = c / (g.h * g.h);
+  return true;
+}
+
 InterfaceSolveReport CorrectionFunctionSolver::Solve(const ClosedCurve& curve,
                                                      const InterfaceProblem& problem,
                                                      std::vector<double>& phi) {
@@ -198,57 +244,33 @@ InterfaceSolveReport CorrectionFunctionSolver::Solve(const ClosedCurve& curve,
   AddBoundaryDataToRhs(g, bc_, problem.boundary, rhs_);
   std::fill(correction_.begin(), correction_.end(), 0.0);
 
-  irregular_points_ = 0;
-  failed_patches_ = 0;
-  const double inv_h2 = 1.0 / (g.h * g.h);
-  const int n_sub = options_.interface_subintervals;
-  CfmInterfaceSample samples[CfmLocalCauchy::kMaxInterfaceSamples];
-  double parameters[CfmLocalCauchy::kMaxInterfaceSamples];
-  double f_jump[CfmLocalCauchy::kAreaPoints];
+  // Irregular stencils (some arm crosses Sigma), then one local Cauchy problem each.
+  irregular_.clear();
   for (int j = 0; j < g.ny; ++j) {
     for (int i = 0; i < g.nx; ++i) {
-      const std::size_t idx = g.index(i, j);
-      const char side = inside_[idx];
-      Eigen::Vector2d far[4];
-      int n_far = 0;
+      const char side = inside_[g.index(i, j)];
       for (int k = 0; k < 4; ++k) {
         const int ii = i + kDi[k], jj = j + kDj[k];
         if (ii < 0 || ii >= g.nx || jj < 0 || jj >= g.ny) continue;
-        if (inside_[g.index(ii, jj)] != side) far[n_far++] = {g.x(ii), g.y(jj)};
+        if (inside_[g.index(ii, jj)] != side) {
+          irregular_.push_back(static_cast<int>(g.index(i, j)));
+          break;
+        }
       }
-      if (n_far == 0) continue;
-      ++irregular_points_;
-      const Eigen::Vector2d center(g.x(i), g.y(j));
-      const double s_hint = near_[idx] ? hint_[idx] : curve.ClosestParameter(center);
-      CfmStencilPatch stencil_patch;
-      if (!BuildCfmStencilPatch(curve, center, g.h, far, n_far, s_hint, &stencil_patch)) {
-        ++failed_patches_;
-        continue;
-      }
-      const int n_samples =
-          CfmInterfaceQuadrature(curve, stencil_patch, n_sub, samples, parameters);
-      for (int q = 0; q < n_samples; ++q) {
-        samples[q].jump_value = jump_value_.Value(parameters[q]);
-        samples[q].jump_normal = jump_normal_.Value(parameters[q]);
-      }
-      const auto area_points = CfmLocalCauchy::AreaPoints(stencil_patch.patch);
-      if (problem.f.empty()) {
-        std::fill(f_jump, f_jump + CfmLocalCauchy::kAreaPoints, 0.0);
-      } else {
-        JumpOfSource(problem.f, i, j, sigma, area_points.data(), f_jump);
-      }
-      if (!cauchy_.Solve(stencil_patch.patch, f_jump, samples, n_samples)) {
-        ++failed_patches_;
-        continue;
-      }
-      // s_k = +1 if x_ij in Omega^- (then phi(x_k) = phi^+ = phi^-_ext + D), else -1.
-      const double sign = side ? 1.0 : -1.0;
-      double c = 0.0;
-      for (int k = 0; k < n_far; ++k) c += sign * cauchy_.Value(far[k]);
-      correction_[idx] = c * inv_h2;
-      rhs_[idx] += correction_[idx];
     }
   }
+  irregular_points_ = static_cast<int>(irregular_.size());
+  int failed = 0;
+#pragma omp parallel num_threads(static_cast <int>(cauchy_.size())) reduction(+ : failed)
+  {
+    CfmLocalCauchy& cauchy = cauchy_[omp_get_thread_num()];
+#pragma omp for schedule(dynamic, 8)
+    for (int t = 0; t < irregular_points_; ++t) {
+      if (!CorrectStencil(curve, problem.f, sigma, irregular_[t], cauchy)) ++failed;
+    }
+  }
+  failed_patches_ = failed;
+  for (const int idx : irregular_) rhs_[idx] += correction_[idx];
   poisson_.Solve(rhs_, phi);
 
   InterfaceSolveReport report;

@@ -113,3 +113,42 @@ TEST(CorrectionFunctionSolver, RefusesUnequalConductivities) {
 
 }  // namespace
 }  // namespace ehd
+
+namespace ehd {
+namespace {
+
+// Convergence/timing table for docs/correction_function_method.md (not a default test: run with
+// --gtest_also_run_disabled_tests --gtest_filter='*Table*'). Optional env CFM_TABLE_EXAMPLES.
+TEST(CorrectionFunctionSolver, DISABLED_ConvergenceTable) {
+  for (const std::string name : {"cfm1", "cfm2", "ellipse", "star"}) {
+    std::printf("\nexample %s\n%6s %8s %14s %8s %10s %10s\n", name.c_str(), "N", "markers",
+                "Linf error", "order", "ms/solve", "irregular");
+    double previous = 0.0;
+    for (const int n : {20, 40, 80, 160, 320, 640}) {
+      const InterfaceExample example = MakeInterfaceExample(name);
+      const Grid2D grid = example.MakeGrid(n);
+      const int markers = example.DefaultMarkers(n);
+      const ClosedCurve curve(example.Markers(markers));
+      const InterfaceProblem problem = SampleInterfaceProblem(example, grid, curve);
+      CorrectionFunctionSolver solver(grid, PoissonBoundaries{});
+      std::vector<double> phi;
+      solver.Solve(curve, problem, phi);  // warm-up
+      const int repeats = n <= 160 ? 10 : 3;
+      double ms = 0.0;
+      for (int r = 0; r < repeats; ++r) ms += solver.Solve(curve, problem, phi).solve_ms;
+      const std::vector<double> exact = ExactSolution(example, grid, curve);
+      double error = 0.0;
+      for (std::size_t k = 0; k < exact.size(); ++k) {
+        error = std::max(error, std::abs(phi[k] - exact[k]));
+      }
+      char order[16] = "-";
+      if (previous > 0.0) std::snprintf(order, sizeof order, "%.2f", std::log2(previous / error));
+      std::printf("%6d %8d %14.5e %8s %10.2f %10d\n", n, markers, error, order, ms / repeats,
+                  solver.irregular_points());
+      previous = error;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ehd

@@ -71,11 +71,17 @@ class CorrectionFunctionSolver {
   void JumpOfSource(const std::vector<double>& f, int i, int j, double sigma,
                     const Eigen::Vector2d* points, double* f_jump) const;
 
+  // Fits and solves the local Cauchy problem of the stencil at grid index `index` and stores
+  // C_ij in correction_[index]; false if no patch could be built or solved.
+  bool CorrectStencil(const ClosedCurve& curve, const std::vector<double>& f, double sigma,
+                      int index, CfmLocalCauchy& cauchy);
+
   Grid2D grid_;
   PoissonBoundaries bc_;
   CorrectionFunctionOptions options_;
   FastPoissonSolver poisson_;
-  CfmLocalCauchy cauchy_;
+  std::vector<CfmLocalCauchy> cauchy_;  // one per OpenMP thread
+  std::vector<int> irregular_;          // grid indices of the irregular stencils
   std::vector<char> inside_;
   std::vector<double> hint_;
   std::vector<char> near_;  // 1 if hint_ is set
