@@ -1,0 +1,43 @@
+// f = d(tau t + q n)/dl = (dq/dl - kappa tau) n + (dtau/dl + kappa q) t, the negative of
+// song2019 eq. (110); see membrane_force.h.
+#include "ehd_capsule/membrane/membrane_force.h"
+
+namespace ehd {
+
+void MarkerFrames::Update(const ClosedCurve& c) {
+  const int m = c.size();
+  if (tangent.cols() != m) {
+    tangent.resize(2, m);
+    normal.resize(2, m);
+  }
+  curvature.resize(m);
+  for (int k = 0; k < m; ++k) {
+    const CurvePoint p = c.AtMarker(k);
+    tangent.col(k) = p.tangent;
+    normal.col(k) = p.normal;
+    curvature[k] = p.curvature;
+  }
+}
+
+void MembraneForceDensity(const MarkerFrames& frames, const ArcLengthStencil& stencil,
+                          const std::vector<double>& segment_tension, const std::vector<double>* q,
+                          const std::vector<double>* dq_dl, std::vector<double>& tau_at_marker,
+                          Eigen::Matrix2Xd& force_density) {
+  const int m = stencil.size();
+  if (force_density.cols() != m) force_density.resize(2, m);
+  tau_at_marker.resize(m);
+  for (int k = 0; k < m; ++k) {
+    const double tau = stencil.SegmentToMarker(segment_tension, k);
+    const double dtau = stencil.SegmentDerivativeAtMarker(segment_tension, k);
+    const double kappa = frames.curvature[k];
+    double fn = -kappa * tau, ft = dtau;
+    if (q != nullptr) {
+      fn += (*dq_dl)[k];
+      ft += kappa * (*q)[k];
+    }
+    tau_at_marker[k] = tau;
+    force_density.col(k) = fn * frames.normal.col(k) + ft * frames.tangent.col(k);
+  }
+}
+
+}  // namespace ehd
