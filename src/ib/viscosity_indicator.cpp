@@ -1,0 +1,235 @@
+// Smoothed-Heaviside viscosity field, song2019 eqs. (117)-(118), (153)-(154), updated in a band
+// around the membrane; see viscosity_indicator.h.
+#include "ehd_capsule/ib/viscosity_indicator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace ehd {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+
+int WrapIndex(int i, int n, bool periodic) {
+  if (periodic) {
+    i %= n;
+    return i < 0 ? i + n : i;
+  }
+  return (i >= 0 && i < n) ? i : -1;
+}
+
+}  // namespace
+
+double SmoothedHeaviside(double d, double h) {
+  if (d <= -2.0 * h) return 0.0;
+  if (d >= 2.0 * h) return 1.0;
+  const double x = d / (2.0 * h);
+  return 0.5 * (1.0 + x + std::sin(kPi * x) / kPi);
+}
+
+ViscosityIndicator::ViscosityIndicator(const Grid2D& grid, bool periodic_x, bool periodic_y,
+                                       double viscosity_inside, double viscosity_outside,
+                                       double margin)
+    : grid_(grid),
+      periodic_x_(periodic_x),
+      periodic_y_(periodic_y),
+      nu_in_(viscosity_inside),
+      nu_out_(viscosity_outside) {
+  if (!(viscosity_inside > 0.0) || !(viscosity_outside > 0.0)) {
+    throw std::invalid_argument("ViscosityIndicator: viscosities must be > 0, got inside=" +
+                                std::to_string(viscosity_inside) +
+                                ", outside=" + std::to_string(viscosity_outside));
+  }
+  if (!(margin >= 0.5)) {
+    throw std::invalid_argument("ViscosityIndicator: margin must be >= 0.5 (cells), got " +
+                                std::to_string(margin));
+  }
+  if (grid.nx < 1 || grid.ny < 1 || !(grid.h > 0.0)) {
+    throw std::invalid_argument("ViscosityIndicator: empty grid or h <= 0");
+  }
+  margin_ = margin * grid.h;
+  band_radius_ = 2.0 * grid.h + margin_;
+  const std::size_t n = grid.size();
+  viscosity_.assign(n, nu_out_);
+  heaviside_.assign(n, 1.0);
+  last_distance_.assign(n, std::numeric_limits<double>::infinity());
+  stamp_.assign(n, 0);
+  best_d2_.assign(n, 0.0);
+  best_s_.assign(n, 0.0);
+}
+
+void ViscosityIndicator::Set(std::size_t node, double h_value) {
+  heaviside_[node] = h_value;
+  viscosity_[node] = nu_in_ * (1.0 - h_value) + nu_out_ * h_value;  // exact at H = 0 and 1
+}
+
+void ViscosityIndicator::Sample(const ClosedCurve& curve) {
+  sample_x_.clear();
+  sample_y_.clear();
+  sample_s_.clear();
+  const int m = curve.size();
+  const double spacing = 0.5 * grid_.h;
+  for (int k = 0; k < m; ++k) {
+    const double s0 = curve.knot(k);
+    const double s1 = (k + 1 < m) ? curve.knot(k + 1) : curve.period();
+    // Chord-length parameter: s1 - s0 is the chord; the spline segment is at most slightly
+    // longer for a resolved curve, so one more sample than chord / spacing keeps gaps < h/2.
+    const int n = static_cast<int>(std::ceil((s1 - s0) / spacing)) + 1;
+    for (int q = 0; q < n; ++q) {
+      const double s = s0 + (s1 - s0) * q / n;
+      sample_x_.push_back(curve.x_spline().Value(s));
+      sample_y_.push_back(curve.y_spline().Value(s));
+      sample_s_.push_back(s);
+    }
+  }
+}
+
+void ViscosityIndicator::FullFill() {
+  // Scanline inside/outside test on the polygon of the dense samples (a closed polygon; the
+  // spline lies within O(h^2 kappa) of it, inside the smooth band that is recomputed anyway).
+  const int ns = static_cast<int>(sample_x_.size());
+  std::fill(heaviside_.begin(), heaviside_.end(), 1.0);
+  std::fill(viscosity_.begin(), viscosity_.end(), nu_out_);
+  double ymin = sample_y_[0], ymax = sample_y_[0];
+  for (int q = 0; q < ns; ++q) {
+    ymin = std::min(ymin, sample_y_[q]);
+    ymax = std::max(ymax, sample_y_[q]);
+  }
+  const double h = grid_.h;
+  const int j_lo = static_cast<int>(std::floor((ymin - grid_.y0) / h - 0.5));
+  const int j_hi = static_cast<int>(std::ceil((ymax - grid_.y0) / h - 0.5));
+  for (int ju = j_lo; ju <= j_hi; ++ju) {
+    const int j = WrapIndex(ju, grid_.ny, periodic_y_);
+    if (j < 0) continue;
+    const double y = grid_.y0 + (ju + 0.5) * h;
+    crossings_.clear();
+    for (int q = 0; q < ns; ++q) {
+      const int r = (q + 1 == ns) ? 0 : q + 1;
+      const double ya = sample_y_[q], yb = sample_y_[r];
+      if ((ya > y) != (yb > y)) {
+        crossings_.push_back(sample_x_[q] + (y - ya) * (sample_x_[r] - sample_x_[q]) / (yb - ya));
+      }
+    }
+    std::sort(crossings_.begin(), crossings_.end());
+    for (std::size_t c = 0; c + 1 < crossings_.size(); c += 2) {
+      const int i_lo = static_cast<int>(std::ceil((crossings_[c] - grid_.x0) / h - 0.5));
+      const int i_hi = static_cast<int>(std::floor((crossings_[c + 1] - grid_.x0) / h - 0.5));
+      for (int iu = i_lo; iu <= i_hi; ++iu) {
+        const int i = WrapIndex(iu, grid_.nx, periodic_x_);
+        if (i >= 0) Set(grid_.index(i, j), 0.0);
+      }
+    }
+  }
+  for (std::size_t node = 0; node < grid_.size(); ++node) {
+    last_distance_[node] = heaviside_[node] > 0.5 ? std::numeric_limits<double>::infinity()
+                                                  : -std::numeric_limits<double>::infinity();
+  }
+}
+
+double ViscosityIndicator::LocalSignedDistance(const ClosedCurve& curve, double s,
+                                               const Eigen::Vector2d& p) const {
+  // Newton on g(s) = (X(s) - p) . X'(s) from the nearest sample, steps limited to h/2.
+  const PeriodicCubicSpline& xs = curve.x_spline();
+  const PeriodicCubicSpline& ys = curve.y_spline();
+  for (int it = 0; it < 8; ++it) {
+    const Eigen::Vector2d x(xs.Value(s), ys.Value(s));
+    const Eigen::Vector2d d1(xs.Derivative(s), ys.Derivative(s));
+    const Eigen::Vector2d d2(xs.SecondDerivative(s), ys.SecondDerivative(s));
+    const double g = (x - p).dot(d1);
+    const double dg = d1.squaredNorm() + (x - p).dot(d2);
+    if (!(dg > 0.0)) break;
+    const double step = std::clamp(g / dg, -0.5 * grid_.h, 0.5 * grid_.h);
+    s -= step;
+    if (std::abs(step) < 1e-12 * grid_.h) break;
+  }
+  const CurvePoint c = curve.At(s);
+  const Eigen::Vector2d r = p - c.position;
+  const double dist = r.norm();
+  return r.dot(c.normal) >= 0.0 ? dist : -dist;
+}
+
+void ViscosityIndicator::Update(const ClosedCurve& curve) {
+  const Eigen::Matrix2Xd& markers = curve.markers();
+  bool full = !has_state_ || previous_markers_.cols() != markers.cols();
+  if (!full) {
+    double moved2 = 0.0;
+    for (Eigen::Index k = 0; k < markers.cols(); ++k) {
+      moved2 = std::max(moved2, (markers.col(k) - previous_markers_.col(k)).squaredNorm());
+    }
+    full = moved2 > margin_ * margin_;
+  }
+  Sample(curve);
+  if (full) FullFill();
+  ++counter_;
+  if (counter_ == 0) {  // wrap-around of the stamp counter: clear the stamps
+    std::fill(stamp_.begin(), stamp_.end(), 0u);
+    counter_ = 1;
+  }
+  previous_band_.swap(band_);
+  band_.clear();
+  const double h = grid_.h, r = band_radius_, r2 = r * r;
+  const int ns = static_cast<int>(sample_x_.size());
+  for (int q = 0; q < ns; ++q) {
+    const double px = sample_x_[q], py = sample_y_[q];
+    const int i_lo = static_cast<int>(std::ceil((px - r - grid_.x0) / h - 0.5));
+    const int i_hi = static_cast<int>(std::floor((px + r - grid_.x0) / h - 0.5));
+    const int j_lo = static_cast<int>(std::ceil((py - r - grid_.y0) / h - 0.5));
+    const int j_hi = static_cast<int>(std::floor((py + r - grid_.y0) / h - 0.5));
+    for (int ju = j_lo; ju <= j_hi; ++ju) {
+      const int j = WrapIndex(ju, grid_.ny, periodic_y_);
+      if (j < 0) continue;
+      const double dy = grid_.y0 + (ju + 0.5) * h - py;
+      for (int iu = i_lo; iu <= i_hi; ++iu) {
+        const int i = WrapIndex(iu, grid_.nx, periodic_x_);
+        if (i < 0) continue;
+        const double dx = grid_.x0 + (iu + 0.5) * h - px;
+        const double d2 = dx * dx + dy * dy;
+        if (d2 > r2) continue;
+        const std::size_t node = grid_.index(i, j);
+        if (stamp_[node] != counter_) {
+          stamp_[node] = counter_;
+          band_.push_back(node);
+          best_d2_[node] = d2;
+          best_s_[node] = sample_s_[q];
+        } else if (d2 < best_d2_[node]) {
+          best_d2_[node] = d2;
+          best_s_[node] = sample_s_[q];
+        }
+      }
+    }
+  }
+  updated_.clear();
+  const double width = grid_.width(), height = grid_.height();
+  for (std::size_t node : band_) {
+    const int i = static_cast<int>(node % static_cast<std::size_t>(grid_.nx));
+    const int j = static_cast<int>(node / static_cast<std::size_t>(grid_.nx));
+    const double s = best_s_[node];
+    // Periodic image of the node nearest to the foot point (markers may be unwrapped).
+    Eigen::Vector2d p(grid_.x(i), grid_.y(j));
+    const Eigen::Vector2d foot(curve.x_spline().Value(s), curve.y_spline().Value(s));
+    if (periodic_x_) p.x() += width * std::round((foot.x() - p.x()) / width);
+    if (periodic_y_) p.y() += height * std::round((foot.y() - p.y()) / height);
+    const double d = LocalSignedDistance(curve, s, p);
+    last_distance_[node] = d;
+    Set(node, SmoothedHeaviside(d, h));
+    if (!full) updated_.push_back(node);
+  }
+  // Nodes that left the band keep their side.
+  for (std::size_t node : previous_band_) {
+    if (stamp_[node] == counter_) continue;
+    Set(node, last_distance_[node] > 0.0 ? 1.0 : 0.0);
+    if (!full) updated_.push_back(node);
+  }
+  if (full) {
+    updated_.resize(grid_.size());
+    for (std::size_t node = 0; node < grid_.size(); ++node) updated_[node] = node;
+  }
+  previous_markers_ = markers;
+  has_state_ = true;
+  last_full_ = full;
+}
+
+}  // namespace ehd
