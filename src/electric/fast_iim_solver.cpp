@@ -27,7 +27,10 @@ void FastIimSolver::SolveForPotential(const ClosedCurve& curve, const double* g,
   const std::vector<double>& bs = classes_.band_parameter();
   const int nb = classes_.band_size();
   for (int b = 0; b < nb; ++b) {
-    band_jump_[b] = (with_data ? band_data_[b] : 0.0) + gs.Value(bs[b]) * band_gcoef_[b];
+    double g_s = 0.0, g_ss = 0.0;
+    curve.ArcLengthDerivatives(gs, bs[b], &g_s, &g_ss);
+    band_jump_[b] = (with_data ? band_data_[b] : 0.0) + gs.Value(bs[b]) * band_gcoef_[b] +
+                    g_ss * band_gsscoef_[b];
   }
   if (with_data) {
     rhs_ = rhs_base_;
@@ -91,6 +94,7 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
   const int nb = classes_.band_size();
   band_data_.resize(nb);
   band_gcoef_.resize(nb);
+  band_gsscoef_.resize(nb);
   band_jump_.resize(nb);
   dn_minus_.resize(m);
   dn_plus_.resize(m);
@@ -117,14 +121,19 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
   const std::vector<double>& bs = classes_.band_parameter();
   const std::vector<double>& bd = classes_.band_distance();
   const std::vector<double>& bk = classes_.band_curvature();
+  scratch_.resize(m);
+  for (int k = 0; k < m; ++k) scratch_[k] = curve.AtMarker(k).curvature;
+  const PeriodicCubicSpline kappa_spline = curve.FitScalar(scratch_);
   for (int b = 0; b < nb; ++b) {
-    double w = 0.0, w_s = 0.0, w_ss = 0.0;
+    double w = 0.0, w_s = 0.0, w_ss = 0.0, kappa_s = 0.0, kappa_ss = 0.0;
     if (has_w) {
       w = ws.Value(bs[b]);
       curve.ArcLengthDerivatives(ws, bs[b], &w_s, &w_ss);
     }
-    band_data_[b] = JumpDataPart(w, w_ss, fjump.Value(bs[b]), bd[b]);
+    curve.ArcLengthDerivatives(kappa_spline, bs[b], &kappa_s, &kappa_ss);
+    band_data_[b] = JumpDataPart(w, w_s, w_ss, fjump.Value(bs[b]), bk[b], kappa_s, bd[b]);
     band_gcoef_[b] = JumpGCoefficient(bd[b], bk[b]);
+    band_gsscoef_[b] = JumpGssCoefficient(bd[b]);
   }
   for (int k = 0; k < m; ++k) {
     double w_ss = 0.0;

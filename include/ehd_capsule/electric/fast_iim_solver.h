@@ -83,7 +83,7 @@ class FastIimSolver {
   std::vector<double> v_;         // [sigma phi_n] at the markers
   std::vector<double> rhs_base_;  // F + side data
   std::vector<double> rhs_, phi_work_;
-  std::vector<double> band_data_, band_gcoef_, band_jump_;
+  std::vector<double> band_data_, band_gcoef_, band_gsscoef_, band_jump_;
   std::vector<double> dn_minus_, dn_plus_, dt_minus_, dt_plus_, w_s_;
   std::vector<double> scratch_;
   int poisson_solves_ = 0;
