@@ -331,8 +331,8 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
                  "marker time integration");
     s.numerics.integrator = integrator == "adams_bashforth2" ? MarkerTimeScheme::kAdamsBashforth2
                                                              : MarkerTimeScheme::kForwardEuler;
-    s.numerics.membrane_substeps =
-        static_cast<int>(n.Integer("membrane_substeps", 1, 1000, 1, "membrane force sub-steps"));
+    s.numerics.membrane_substeps = static_cast<int>(
+        n.Integer("membrane_substeps", 1, 1000, 1, "time-step refinement for a stiff membrane"));
     s.numerics.electric_every = static_cast<int>(
         n.Integer("electric_every", 1, 1000000, 1, "solve the potential every n steps"));
     s.numerics.electric_move_tolerance =
@@ -404,7 +404,7 @@ Scene ParseScene(const std::string& yaml_text, const std::vector<std::string>& o
     for (const auto& o : overrides) text << ' ' << o;
   }
   text << '\n' << YAML::Dump(root) << '\n';
-  scene.yaml = text.str();
+  scene.yaml_text = text.str();
   return scene;
 }
 

@@ -11,7 +11,9 @@ LatticeUnits DeriveLatticeUnits(const Scene& s) {
   LatticeUnits u;
   u.half_width = 0.5 * s.N;
   u.radius = u.half_width / s.geometry.half_width;
-  u.tau = s.numerics.tau;
+  // membrane_substeps n refines the time step at fixed h: nu -> nu / n (and k -> k / n through
+  // k = Re nu / a^2), i.e. tau -> 1/2 + (tau - 1/2) / n.
+  u.tau = 0.5 + (s.numerics.tau - 0.5) / s.numerics.membrane_substeps;
   u.viscosity = (u.tau - 0.5) / 3.0;
   u.viscosity_inner = s.V * u.viscosity;
   u.tau_inner = 3.0 * u.viscosity_inner + 0.5;

@@ -98,7 +98,7 @@ TEST(Scene, OverridesApplyAndAreKeptInTheText) {
   EXPECT_DOUBLE_EQ(s.geometry.aspect_ratio, 0.5);
   EXPECT_DOUBLE_EQ(s.numerics.tau, 0.8);
   // The published text re-parses to the same scene.
-  const Scene again = ParseScene(s.yaml);
+  const Scene again = ParseScene(s.yaml_text);
   EXPECT_DOUBLE_EQ(again.Ca, 0.2);
   EXPECT_EQ(again.geometry.shape, InitialShape::kEllipse);
   ExpectSceneError(kMinimalCapsule, {"Ca"}, {"key=value"});

@@ -54,6 +54,9 @@ struct SceneElectric {
 struct SceneNumerics {
   double tau = 1.0;  // LBM relaxation time of the outer fluid: nu = (tau - 1/2) / 3
   MarkerTimeScheme integrator = MarkerTimeScheme::kForwardEuler;
+  // Time-step refinement n for a stiff membrane (explicit limit): the lattice step is divided by
+  // n at fixed h, i.e. nu -> nu / n, k -> k / n, tau -> 1/2 + (tau - 1/2) / n (n times as many
+  // steps per unit of time; the dimensionless numbers are unchanged).
   int membrane_substeps = 1;
   int electric_every = 1;              // solve the potential every n steps ...
   double electric_move_tolerance = 0;  // ... or when a marker moved more (cells) since the last
@@ -66,8 +69,8 @@ struct SceneNumerics {
 struct Scene {
   std::string name;  // file stem, or "inline"
   std::string description;
-  std::string source;  // path it came from
-  std::string yaml;    // YAML text with the overrides applied (for publishing)
+  std::string source;     // path it came from
+  std::string yaml_text;  // YAML text with the overrides applied (for publishing)
   std::vector<std::string> overrides;
 
   double Ca = 0.0;

@@ -1,7 +1,8 @@
 // Dimensionless scene numbers -> lattice values (the one place where units are converted).
 //
 // Lattice units: h = 1, dt = 1, rho = 1. The domain [-L, L]^2 has N cells, so L = N/2 and the
-// radius is a = N / (2 L/a). The outer fluid has nu = (tau - 1/2)/3, mu = rho nu (song2019
+// radius is a = N / (2 L/a). The outer fluid has nu = (tau - 1/2)/(3 n) with n =
+// numerics.membrane_substeps (time-step refinement at fixed h), mu = rho nu (song2019
 // eq. (99) with c = dx/dt = 1), the inner fluid nu_in = V nu. With T the membrane tension scale
 // (gamma for a drop, E_s for a capsule):
 //   shear:     k = Re nu / a^2                  (Re = rho k a^2 / mu, sec. 4.1)

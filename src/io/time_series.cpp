@@ -1,0 +1,38 @@
+#include "ehd_capsule/io/time_series.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace ehd {
+
+std::string TimeSeriesHeader() {
+  return "step,t,dxy,inclination,area,tt_phase,area_drift,ca,ca_e,fe_x,fe_y,gmres_iterations,"
+         "max_mach";
+}
+
+TimeSeriesCsv::TimeSeriesCsv(const std::string& path, const Simulation&, bool append)
+    : path_(path) {
+  std::error_code ec;
+  const bool has_rows =
+      append && std::filesystem::exists(path, ec) && std::filesystem::file_size(path, ec) > 0;
+  out_.open(path, append ? std::ios::app : std::ios::trunc);
+  if (!out_) throw std::runtime_error("cannot write the time series " + path);
+  if (!has_rows) out_ << TimeSeriesHeader() << '\n';
+}
+
+void TimeSeriesCsv::Write(const Simulation& sim) {
+  const SimulationState& s = sim.state();
+  const double a = sim.units().radius;
+  const double t_scale = sim.units().tension * a;
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g\n", s.step,
+                s.time, s.dxy, s.inclination, s.area / (M_PI * a * a), s.tt_phase, s.area_drift,
+                s.ca, s.ca_e, s.electric_force_total.x() / t_scale,
+                s.electric_force_total.y() / t_scale, s.gmres_iterations, s.max_mach);
+  out_ << line;
+  if (!out_) throw std::runtime_error("writing the time series " + path_ + " failed");
+}
+
+}  // namespace ehd
