@@ -1,0 +1,152 @@
+// Throughput of the D2Q9 MRT stream-collide kernel (LatticeBoltzmann2D::Step) in MLUPS (million
+// lattice-node updates per second), with a STREAM-like triad for the machine's memory bandwidth.
+//
+// Memory traffic per node update (double): 9 population reads + 9 writes (144 B) + write-allocate
+// of the 9 written lines (72 B) = 216 B for a bare D2Q9 kernel; this kernel also reads the force
+// (2 x 8 B) and writes rho, ux, uy (3 x 8 B + 3 x 8 B write-allocate): 280 B per update (+8 B with
+// a viscosity field). The bound is bandwidth / 280 B.
+//
+// usage: lbm_bench [--sizes 256,321,512,1024,1281] [--threads 1,2] [--seconds 0.5] [--repeats 3]
+//                  [--forcing split|guo] [--viscosity-field]
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ehd_capsule/lbm/lattice_boltzmann_2d.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::vector<int> ParseList(const std::string& text) {
+  std::vector<int> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    out.push_back(std::stoi(text.substr(start, comma - start)));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+// Triad a = b + s c over arrays much larger than the caches; counts 3 x 8 B + 8 B write-allocate.
+double TriadBandwidthGBs(int threads) {
+  const std::size_t n = 1 << 25;  // 3 x 256 MiB
+  std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
+  double best = 0;
+  for (int rep = 0; rep < 4; ++rep) {
+    const auto t0 = Clock::now();
+    double* __restrict pa = a.data();
+    const double* __restrict pb = b.data();
+    const double* __restrict pc = c.data();
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::size_t k = 0; k < n; ++k) pa[k] = pb[k] + 0.5 * pc[k];
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    best = std::max(best, 32.0 * n / s * 1e-9);
+  }
+  if (a[n / 2] != 2.0) std::printf("(triad check failed)\n");
+  return best;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes = {256, 321, 512, 1024, 1281};
+  std::vector<int> thread_counts = {1, 2};
+  double seconds = 0.5;
+  int repeats = 3;
+  ehd::ForcingScheme forcing = ehd::ForcingScheme::kSplitMomentum;
+  bool viscosity_field = false;
+  try {
+    for (int k = 1; k < argc; ++k) {
+      const std::string arg = argv[k];
+      auto value = [&]() -> std::string {
+        if (k + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
+        return argv[++k];
+      };
+      if (arg == "--sizes") {
+        sizes = ParseList(value());
+      } else if (arg == "--threads") {
+        thread_counts = ParseList(value());
+      } else if (arg == "--seconds") {
+        seconds = std::stod(value());
+      } else if (arg == "--repeats") {
+        repeats = std::stoi(value());
+      } else if (arg == "--forcing") {
+        const std::string v = value();
+        if (v != "split" && v != "guo") throw std::invalid_argument("--forcing split|guo");
+        forcing = v == "guo" ? ehd::ForcingScheme::kGuo : ehd::ForcingScheme::kSplitMomentum;
+      } else if (arg == "--viscosity-field") {
+        viscosity_field = true;
+      } else {
+        throw std::invalid_argument("unknown option " + arg);
+      }
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr,
+                 "lbm_bench: %s\nusage: lbm_bench [--sizes 256,321,...] [--threads 1,2] "
+                 "[--seconds 0.5] [--repeats 3] [--forcing split|guo] [--viscosity-field]\n",
+                 e.what());
+    return 2;
+  }
+  const double bytes_per_update = viscosity_field ? 288.0 : 280.0;
+  std::printf("D2Q9 MRT stream-collide, shear walls, forcing %s%s, best of %d runs of >= %.2f s\n",
+              forcing == ehd::ForcingScheme::kGuo ? "guo" : "split",
+              viscosity_field ? ", viscosity field" : "", repeats, seconds);
+  for (int t : thread_counts) {
+    const double bw = TriadBandwidthGBs(t);
+    std::printf("triad bandwidth, %d thread(s): %.1f GB/s -> bound %.0f MLUPS at %.0f B/update\n",
+                t, bw, bw * 1e3 / bytes_per_update, bytes_per_update);
+  }
+  std::printf("%8s %8s %8s %10s %10s %12s\n", "N", "threads", "steps", "MLUPS", "GB/s",
+              "ns/update");
+  for (int n : sizes) {
+    for (int t : thread_counts) {
+      ehd::LbmParameters p;
+      p.nx = p.ny = n;
+      p.viscosity = 0.1;
+      p.boundary = ehd::FluidBoundary::kShearWalls;
+      p.forcing = forcing;
+      p.threads = t;
+      ehd::LatticeBoltzmann2D lb(p);
+      lb.InitializeShear(1e-3 / n);
+      for (std::size_t k = 0; k < lb.force_x().size(); ++k) lb.force_x()[k] = 1e-8 * (k % 7);
+      if (viscosity_field) {
+        std::vector<double> nu(lb.grid().size(), 0.1);
+        for (std::size_t k = 0; k < nu.size() / 3; ++k) nu[k] = 0.5;
+        lb.SetViscosityField(nu);
+      }
+      // Calibrate the step count to about `seconds`.
+      int steps = 2;
+      for (;;) {
+        const auto t0 = Clock::now();
+        for (int s = 0; s < steps; ++s) lb.Step();
+        const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+        if (dt > 0.2 * seconds) {
+          steps = std::max(steps, static_cast<int>(steps * seconds / dt));
+          break;
+        }
+        steps *= 2;
+      }
+      double best = 0;
+      for (int rep = 0; rep < repeats; ++rep) {
+        const auto t0 = Clock::now();
+        for (int s = 0; s < steps; ++s) lb.Step();
+        const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+        best = std::max(best, static_cast<double>(n) * n * steps / dt * 1e-6);
+      }
+      if (!lb.AllFinite()) std::printf("(non-finite state)\n");
+      std::printf("%8d %8d %8d %10.1f %10.1f %12.2f\n", n, t, steps, best,
+                  best * bytes_per_update * 1e-3, 1e3 / best);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
