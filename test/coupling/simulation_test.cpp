@@ -1,0 +1,228 @@
+// The coupled step on tiny grids: pipeline composition, capsule in shear, electric drop (Feng's
+// sign), run-time changes, watchdogs and checkpoint/restart.
+#include "ehd_capsule/coupling/simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "ehd_capsule/coupling/viscosity_field.h"
+
+namespace ehd {
+namespace {
+
+const char* kTinyCapsule = R"(
+name: tiny_capsule
+Ca: 0.1
+Re: 0.1
+E_b: 0
+eta: 0
+V: 1
+N: 48
+M: 48
+geometry: {shape: circle, half_width: 4}
+membrane: capsule
+flow: shear
+)";
+
+const char* kTinyDrop = R"(
+name: tiny_drop
+Oh: 1
+V: 1
+Ca_E: 0.5
+sigma_r: 4.75
+eps_r: 3.5
+N: 48
+M: 48
+geometry: {shape: circle, half_width: 4}
+membrane: drop
+flow: none
+electric: {}
+)";
+
+void RunUntil(Simulation& sim, double t) {
+  while (sim.state().time < t) sim.Step();
+}
+
+// A scene builds only what it needs.
+TEST(Simulation, PipelineHasOnlyWhatTheSceneNeeds) {
+  Simulation plain(ParseScene(kTinyCapsule));
+  EXPECT_FALSE(plain.has_electric_field());
+  EXPECT_FALSE(plain.has_bending());
+  EXPECT_FALSE(plain.has_viscosity_contrast());
+  EXPECT_EQ(plain.state().electric_force.cols(), 0);  // no electric buffers
+  EXPECT_TRUE(plain.potential().empty());
+  EXPECT_NE(plain.Pipeline().find("electric: none"), std::string::npos) << plain.Pipeline();
+  EXPECT_EQ(plain.Pipeline().find("bending"), std::string::npos) << plain.Pipeline();
+  EXPECT_EQ(plain.Pipeline().find("Heaviside"), std::string::npos) << plain.Pipeline();
+  plain.Step();
+  EXPECT_EQ(plain.state().electric_force.cols(), 0);
+
+  Simulation full(
+      ParseScene(kTinyCapsule, {"E_b=0.01", "V=2", "Ca_E=0.1", "sigma_r=1.75", "eps_r=3.5"}));
+  EXPECT_TRUE(full.has_electric_field());
+  EXPECT_TRUE(full.has_bending());
+  EXPECT_TRUE(full.has_viscosity_contrast());
+  EXPECT_NE(full.Pipeline().find("bending"), std::string::npos) << full.Pipeline();
+  EXPECT_NE(full.Pipeline().find("Heaviside"), std::string::npos) << full.Pipeline();
+  full.Step();
+  EXPECT_EQ(full.state().electric_force.cols(), 48);
+  EXPECT_GT(full.state().gmres_iterations, 0);
+}
+
+// At early times the membrane force is negligible and a circle is deformed affinely by the
+// straining part of u = (k y, 0): rate k/2 along the 45 degree axis, so L/B = exp(k t) and
+// D_xy = tanh(k t / 2) ~ k t / 2, theta = pi/4. Later the membrane resists (D below k t / 2).
+// The area is conserved by the incompressible flow (up to the IB leakage, small over this time).
+TEST(Simulation, CapsuleInShearDeformsFromZero) {
+  Simulation sim(ParseScene(kTinyCapsule));
+  EXPECT_LT(sim.state().dxy, 1e-6);
+  RunUntil(sim, 0.05);
+  const double t = sim.state().time;
+  EXPECT_NEAR(sim.state().dxy, std::tanh(t / 2), 0.15 * t / 2);
+  EXPECT_NEAR(sim.state().inclination, M_PI / 4, 0.05);
+  RunUntil(sim, 0.5);
+  EXPECT_GT(sim.state().dxy, 0.1);
+  EXPECT_LT(sim.state().dxy, std::tanh(sim.state().time / 2));  // elasticity resists
+  EXPECT_GT(sim.state().inclination, 0.0);
+  EXPECT_LT(sim.state().inclination, M_PI / 4 + 0.02);  // tilts towards the flow
+  EXPECT_LT(std::abs(sim.state().area_drift), 0.01);
+  EXPECT_LT(sim.state().tt_phase, 0.0);  // the membrane turns clockwise with the flow
+}
+
+// Feng (2002), song2019 sec. 4.2.2: D = f_d Ca_E / (3 (1 + sigma_r)^2),
+// f_d = sigma_r^2 + sigma_r + 1 - 3 eps_r. sigma_r = 4.75, eps_r = 3.5: f_d = 17.8 > 0, prolate
+// along the field (y): major axis vertical. sigma_r = 1.75: f_d = -4.7 < 0, oblate: major axis
+// along x. Only the sign and orientation are checked on this coarse grid.
+TEST(Simulation, ElectricDropDeformsWithFengsSign) {
+  for (const double sigma_r : {4.75, 1.75}) {
+    SCOPED_TRACE(sigma_r);
+    Simulation sim(
+        ParseScene(kTinyDrop, {"sigma_r=" + std::to_string(sigma_r), "numerics.electric_every=4"}));
+    RunUntil(sim, 2.0);
+    const double fd = sigma_r * sigma_r + sigma_r + 1 - 3 * 3.5;
+    const double d_theory = fd * 0.5 / (3 * (1 + sigma_r) * (1 + sigma_r));
+    EXPECT_GT(sim.state().dxy, 0.25 * std::abs(d_theory));
+    const bool vertical = std::abs(sim.state().inclination) > M_PI / 4;
+    EXPECT_EQ(vertical, fd > 0) << "inclination " << sim.state().inclination;
+    // A neutral drop feels no net electric force (sum F_E dl = 0 up to discretisation).
+    const double scale = sim.state().electric_force.cwiseAbs().maxCoeff() * 2 * M_PI * 6;
+    EXPECT_LT(sim.state().electric_force_total.norm(), 0.05 * scale);
+    EXPECT_LT(std::abs(sim.state().area_drift), 0.02);
+  }
+}
+
+TEST(Simulation, SetCaAndSetCaETakeEffectAtTheNextStep) {
+  Simulation sim(ParseScene(kTinyCapsule, {"electric={}", "sigma_r=2", "eps_r=1"}));
+  EXPECT_DOUBLE_EQ(sim.state().ca_e, 0.0);
+  sim.Step();
+  EXPECT_EQ(sim.state().gmres_iterations, 0);  // field built but off
+  const double t1 = sim.state().time;
+  sim.SetCa(0.2);
+  sim.SetCaE(0.4);
+  EXPECT_DOUBLE_EQ(sim.state().ca, 0.1);  // queued, not applied yet
+  EXPECT_DOUBLE_EQ(sim.state().ca_e, 0.0);
+  sim.Step();
+  EXPECT_DOUBLE_EQ(sim.state().ca, 0.2);
+  EXPECT_DOUBLE_EQ(sim.state().ca_e, 0.4);
+  // Doubling Ca at fixed E_s doubles k: the step advances twice the time.
+  EXPECT_NEAR(sim.state().time - t1, 2 * sim.units().shear_rate, 1e-15);
+  EXPECT_GT(sim.state().gmres_iterations, 0);
+  EXPECT_GT(sim.state().electric_force.cwiseAbs().maxCoeff(), 0.0);
+
+  EXPECT_THROW(sim.SetCaE(-0.1), std::invalid_argument);
+  EXPECT_THROW(sim.SetCaE(5.5), std::invalid_argument);
+  EXPECT_THROW(sim.SetCa(-1), std::invalid_argument);
+  Simulation no_field(ParseScene(kTinyCapsule));
+  try {
+    no_field.SetCaE(0.3);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("without"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(no_field.SetCaE(0.0));
+}
+
+// A capsule placed against the wall stops at once with an error naming the step and the wall.
+TEST(Simulation, WatchdogNamesStepAndQuantity) {
+  Simulation sim(ParseScene(kTinyCapsule, {"geometry.center_y=2.8"}));
+  try {
+    sim.Step();
+    FAIL();
+  } catch (const SimulationError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("step 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("wall"), std::string::npos) << what;
+  }
+}
+
+// Save, continue; restore into a fresh simulation, continue: identical bits (markers, fluid,
+// diagnostics), with the field re-solved every 3 steps, AB2 markers and a Kelvin-Voigt history.
+TEST(Simulation, CheckpointRestartIsBitForBit) {
+  const Scene scene = ParseScene(
+      kTinyCapsule, {"eta=1", "Ca_E=0.2", "sigma_r=1.75", "eps_r=3.5", "numerics.electric_every=3",
+                     "numerics.integrator=adams_bashforth2"});
+  const std::string path = ::testing::TempDir() + "/ehd_checkpoint_test.bin";
+  Simulation a(scene);
+  for (int i = 0; i < 7; ++i) a.Step();
+  a.Save(path);
+  for (int i = 0; i < 8; ++i) a.Step();
+
+  Simulation b(scene);
+  b.Restore(path);
+  EXPECT_EQ(b.state().step, 7);
+  for (int i = 0; i < 8; ++i) b.Step();
+  EXPECT_EQ(a.state().step, b.state().step);
+  EXPECT_EQ(a.state().time, b.state().time);
+  EXPECT_TRUE((a.state().markers.array() == b.state().markers.array()).all());
+  EXPECT_TRUE((a.state().electric_force.array() == b.state().electric_force.array()).all());
+  EXPECT_EQ(a.ux(), b.ux());
+  EXPECT_EQ(a.uy(), b.uy());
+  EXPECT_EQ(a.state().tt_phase, b.state().tt_phase);
+
+  // A checkpoint of another scene is refused.
+  Simulation other(ParseScene(kTinyCapsule));
+  EXPECT_THROW(other.Restore(path), std::runtime_error);
+  std::remove(path.c_str());
+}
+
+TEST(Simulation, ResetReturnsToTheInitialState) {
+  Simulation sim(ParseScene(kTinyCapsule));
+  const Eigen::Matrix2Xd x0 = sim.state().markers;
+  for (int i = 0; i < 5; ++i) sim.Step();
+  sim.Reset();
+  EXPECT_EQ(sim.state().step, 0);
+  EXPECT_TRUE((sim.state().markers.array() == x0.array()).all());
+}
+
+// eq. (117): H(-2h) = 0, H(0) = 1/2, H(2h) = 1, and H(d) + H(-d) = 1.
+TEST(ViscosityField, SmoothedHeavisideMatchesEq117) {
+  EXPECT_DOUBLE_EQ(SmoothedHeaviside(-2.0, 1.0), 0.0);
+  EXPECT_DOUBLE_EQ(SmoothedHeaviside(0.0, 1.0), 0.5);
+  EXPECT_DOUBLE_EQ(SmoothedHeaviside(2.0, 1.0), 1.0);
+  for (double d : {0.3, 0.9, 1.7}) {
+    EXPECT_NEAR(SmoothedHeaviside(d, 1.0) + SmoothedHeaviside(-d, 1.0), 1.0, 1e-15);
+  }
+}
+
+// Inside a circle of radius 8 nu = nu_in, outside nu_out; the integral of (nu - nu_out) is
+// (nu_in - nu_out) pi r^2 to O(h^2) (the symmetric smoothing keeps the mean interface).
+TEST(ViscosityField, CircleGivesInnerAndOuterValues) {
+  const Grid2D g{32, 32, 1.0, -16.0, -16.0};
+  Eigen::Matrix2Xd x(2, 64);
+  for (int k = 0; k < 64; ++k)
+    x.col(k) << 8 * std::cos(2 * M_PI * k / 64), 8 * std::sin(2 * M_PI * k / 64);
+  ViscosityField field(g, true);
+  std::vector<double> nu;
+  field.Update(ClosedCurve(x), 2.0, 1.0, nu);
+  EXPECT_DOUBLE_EQ(nu[g.index(16, 16)], 2.0);
+  EXPECT_DOUBLE_EQ(nu[g.index(0, 0)], 1.0);
+  double excess = 0;
+  for (double v : nu) excess += v - 1.0;
+  EXPECT_NEAR(excess, M_PI * 64, 0.01 * M_PI * 64);
+}
+
+}  // namespace
+}  // namespace ehd
