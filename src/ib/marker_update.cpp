@@ -20,6 +20,12 @@ void MarkerArcElements(const ClosedCurve& c, std::vector<double>& dl) {
   }
 }
 
+void MarkerArcElementsFromSegments(const std::vector<double>& seg, std::vector<double>& dl) {
+  const std::size_t m = seg.size();
+  if (dl.size() != m) dl.resize(m);
+  for (std::size_t k = 0; k < m; ++k) dl[k] = 0.5 * (seg[k == 0 ? m - 1 : k - 1] + seg[k]);
+}
+
 std::vector<double> MarkerArcElements(const ClosedCurve& c) {
   std::vector<double> dl;
   MarkerArcElements(c, dl);

@@ -131,10 +131,11 @@ void ViscosityIndicator::FullFill() {
 
 double ViscosityIndicator::LocalSignedDistance(const ClosedCurve& curve, double s,
                                                const Eigen::Vector2d& p) const {
-  // Newton on g(s) = (X(s) - p) . X'(s) from the nearest sample, steps limited to h/2.
+  // Newton on g(s) = (X(s) - p) . X'(s) from the nearest sample (within ~h/4 of the foot
+  // point), steps limited to h/2; stops at 1e-9 h, far below what H can resolve.
   const PeriodicCubicSpline& xs = curve.x_spline();
   const PeriodicCubicSpline& ys = curve.y_spline();
-  for (int it = 0; it < 8; ++it) {
+  for (int it = 0; it < 6; ++it) {
     const Eigen::Vector2d x(xs.Value(s), ys.Value(s));
     const Eigen::Vector2d d1(xs.Derivative(s), ys.Derivative(s));
     const Eigen::Vector2d d2(xs.SecondDerivative(s), ys.SecondDerivative(s));
@@ -143,7 +144,7 @@ double ViscosityIndicator::LocalSignedDistance(const ClosedCurve& curve, double 
     if (!(dg > 0.0)) break;
     const double step = std::clamp(g / dg, -0.5 * grid_.h, 0.5 * grid_.h);
     s -= step;
-    if (std::abs(step) < 1e-12 * grid_.h) break;
+    if (std::abs(step) < 1e-9 * grid_.h) break;
   }
   const CurvePoint c = curve.At(s);
   const Eigen::Vector2d r = p - c.position;

@@ -11,6 +11,7 @@ void MarkerFrames::Update(const ClosedCurve& c) {
     normal.resize(2, m);
   }
   curvature.resize(m);
+  orientation = c.orientation();
   for (int k = 0; k < m; ++k) {
     const CurvePoint p = c.AtMarker(k);
     tangent.col(k) = p.tangent;
@@ -28,7 +29,7 @@ void MembraneForceDensity(const MarkerFrames& frames, const ArcLengthStencil& st
   tau_at_marker.resize(m);
   for (int k = 0; k < m; ++k) {
     const double tau = stencil.SegmentToMarker(segment_tension, k);
-    const double dtau = stencil.SegmentDerivativeAtMarker(segment_tension, k);
+    const double dtau = frames.orientation * stencil.SegmentDerivativeAtMarker(segment_tension, k);
     const double kappa = frames.curvature[k];
     double fn = -kappa * tau, ft = dtau;
     if (q != nullptr) {

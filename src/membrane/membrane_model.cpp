@@ -83,7 +83,7 @@ void MembraneModel::ComputeForce(const ClosedCurve& curve, double dt,
   if (bending_) {
     for (int k = 0; k < m; ++k)
       excess_curvature_[k] = frames_.curvature[k] - reference_curvature_[k];
-    bending_->Compute(stencil_, excess_curvature_, q_, dq_dl_);
+    bending_->Compute(stencil_, excess_curvature_, frames_.orientation, q_, dq_dl_);
     MembraneForceDensity(frames_, stencil_, tau_segment_, &q_, &dq_dl_, tau_marker_, force_density);
   } else {
     MembraneForceDensity(frames_, stencil_, tau_segment_, nullptr, nullptr, tau_marker_,

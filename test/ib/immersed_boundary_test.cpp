@@ -233,6 +233,10 @@ TEST(MarkerArcElements, CircleElementsSumToPerimeter) {
   for (double v : dl) sum += v;
   EXPECT_NEAR(sum, c.ArcLength(), 1e-12);
   for (double v : dl) EXPECT_NEAR(v, 2.0 * M_PI * 3.0 / 64.0, 1e-6);
+  std::vector<double> seg(64), dl2;
+  for (int k = 0; k < 64; ++k) seg[k] = c.SegmentArcLength(k);
+  MarkerArcElementsFromSegments(seg, dl2);
+  for (int k = 0; k < 64; ++k) EXPECT_DOUBLE_EQ(dl2[k], dl[k]);
 }
 
 TEST(WrapCurveIntoDomain, ShiftsWholeCurveByPeriods) {

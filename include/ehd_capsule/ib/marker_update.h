@@ -25,6 +25,9 @@ namespace ehd {
 std::vector<double> MarkerArcElements(const ClosedCurve& c);
 // Same without allocating (dl resized only if its size differs).
 void MarkerArcElements(const ClosedCurve& c, std::vector<double>& dl);
+// From already computed segment lengths l_k (e.g. MembraneModel::segment_length()).
+void MarkerArcElementsFromSegments(const std::vector<double>& segment_length,
+                                   std::vector<double>& dl);
 
 enum class MarkerIntegrator { kForwardEuler, kAdamsBashforth2 };
 

@@ -15,11 +15,13 @@ namespace ehd {
 
 struct BendingTension {
   double bending_modulus = 0.0;  // E_B
-  // excess_curvature[k] = kappa_k - kappa_0,k; writes q and dq/dl at every marker.
+  // excess_curvature[k] = kappa_k - kappa_0,k; writes q and dq/dl at every marker, with l along
+  // the counter-clockwise tangent (orientation = +1 if the markers run counter-clockwise, else
+  // -1: first derivatives along the marker order change sign, second derivatives do not).
   void Compute(const ArcLengthStencil& stencil, const std::vector<double>& excess_curvature,
-               std::vector<double>& q, std::vector<double>& dq_dl) const {
+               int orientation, std::vector<double>& q, std::vector<double>& dq_dl) const {
     for (int k = 0; k < stencil.size(); ++k) {
-      q[k] = bending_modulus * stencil.MarkerFirst(excess_curvature, k);
+      q[k] = orientation * bending_modulus * stencil.MarkerFirst(excess_curvature, k);
       dq_dl[k] = bending_modulus * stencil.MarkerSecond(excess_curvature, k);
     }
   }

@@ -22,15 +22,19 @@
 
 namespace ehd {
 
-// Marker geometry of a curve (spline tangent, normal, curvature at the knots).
+// Marker geometry of a curve (spline tangent, normal, curvature at the knots). orientation is +1
+// if the markers run counter-clockwise, -1 otherwise: stencil derivatives follow the marker
+// order, so d/dl along the counter-clockwise tangent is orientation * (stencil first derivative).
 struct MarkerFrames {
   Eigen::Matrix2Xd tangent, normal;
   std::vector<double> curvature;
+  int orientation = 1;
   void Update(const ClosedCurve& c);
 };
 
 // f (2 x M, resized if needed) from segment tensions tau (size M) and, if q != nullptr, the
-// transverse shear tension q and dq/dl at markers. tau_at_marker (size M) receives tau at markers.
+// transverse shear tension q and dq/dl at markers, both along the counter-clockwise tangent.
+// tau_at_marker (size M) receives tau at markers.
 void MembraneForceDensity(const MarkerFrames& frames, const ArcLengthStencil& stencil,
                           const std::vector<double>& segment_tension, const std::vector<double>* q,
                           const std::vector<double>* dq_dl, std::vector<double>& tau_at_marker,

@@ -60,6 +60,9 @@ class MembraneModel {
   // Per-segment tension and stretch of the last ComputeForce.
   const std::vector<double>& segment_tension() const { return tau_segment_; }
   const std::vector<double>& stretch() const { return stretch_; }
+  // Spline arc length of each segment of the last ComputeForce (reuse for the arc elements
+  // dl_k = (l_{k-1} + l_k)/2 instead of recomputing them).
+  const std::vector<double>& segment_length() const { return segment_length_; }
   const std::vector<double>& reference_segment_length() const { return reference_length_; }
   const std::vector<double>& reference_curvature() const { return reference_curvature_; }
   const MembraneParameters& parameters() const { return params_; }
