@@ -1,0 +1,160 @@
+// ehd_sim converge: grid (and marker) refinement study of one scene.
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <iostream>
+
+#include "command.h"
+#include "ehd_capsule/coupling/simulation.h"
+#include "ehd_capsule/scene/scene.h"
+
+namespace ehd::cli {
+namespace {
+
+const char* kUsage =
+    "usage: ehd_sim converge SCENE [--grids 32,64,128] [--set key=value ...]\n"
+    "                       [--until T | --until-steady TOL]\n\n"
+    "Runs SCENE at each grid N (markers refined with the grid: M = round(N M0 / N0) from the\n"
+    "scene's N0, M0) and prints per resolution D_xy and theta at the end time (default\n"
+    "numerics.t_end) or at steady state, the difference to the finest grid (or, for a drop in a\n"
+    "field without shear, to Feng's small-deformation D = f_d Ca_E / (3 (1 + sigma_r)^2)), the\n"
+    "observed order log(e_coarse / e_fine) / log(N_fine / N_coarse), steps, wall s and ms/step.\n"
+    "With the field, D is signed: + elongated along the field (y), - across it.\n";
+
+struct Result {
+  int n = 0, m = 0;
+  long steps = 0;
+  double wall = 0, dxy = 0, theta = 0, signed_d = 0, time = 0;
+  bool steady = false;
+  std::string error;
+};
+
+int Converge(const std::vector<std::string>& args) {
+  std::string scene_name;
+  std::vector<std::string> overrides;
+  std::vector<int> grids = {32, 64, 128};
+  double until = -1, steady_tol = -1;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--grids")
+      grids = ParseIntList(a, OptionValue(args, i));
+    else if (a == "--set")
+      overrides.push_back(OptionValue(args, i));
+    else if (a == "--until")
+      until = ParseDouble(a, OptionValue(args, i));
+    else if (a == "--until-steady")
+      steady_tol = ParseDouble(a, OptionValue(args, i));
+    else if (!a.empty() && a[0] == '-')
+      throw UsageError("unknown option '" + a + "'");
+    else if (scene_name.empty())
+      scene_name = a;
+    else
+      throw UsageError("more than one scene given");
+  }
+  if (scene_name.empty()) throw UsageError("no scene given");
+  if (grids.size() < 2) throw UsageError("--grids needs at least two resolutions");
+  for (int n : grids) {
+    if (n < 16) throw UsageError("--grids: each N must be >= 16, got " + std::to_string(n));
+  }
+  if (until >= 0 && steady_tol >= 0) throw UsageError("give --until or --until-steady");
+
+  const Scene base = LoadScene(scene_name, overrides);
+  const double t_end = until >= 0 ? until : base.numerics.t_end;
+  const bool feng = !base.has_shear() && base.electric_field &&
+                    base.membrane == MembraneKind::kDrop && base.Ca_E > 0;
+  const double fd = base.sigma_r * base.sigma_r + base.sigma_r + 1 - 3 * base.eps_r;
+  const double d_feng = fd * base.Ca_E / (3 * (1 + base.sigma_r) * (1 + base.sigma_r));
+  std::cout << DescribeScene(base);
+  std::cout << "end: " << (steady_tol > 0 ? "steady to " + std::to_string(steady_tol) + " or " : "")
+            << "t = " << t_end << '\n';
+  if (feng) std::printf("Feng small-deformation D = %.5f (f_d = %.4g)\n", d_feng, fd);
+
+  std::vector<Result> results;
+  for (int n : grids) {
+    Result r;
+    r.n = n;
+    r.m = static_cast<int>(std::lround(static_cast<double>(n) * base.M / base.N));
+    std::vector<std::string> o = overrides;
+    o.push_back("N=" + std::to_string(n));
+    o.push_back("M=" + std::to_string(r.m));
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      Simulation sim(LoadScene(scene_name, o));
+      std::deque<std::array<double, 3>> window;
+      while (sim.state().time < t_end - 1e-12) {
+        sim.Step();
+        const SimulationState& s = sim.state();
+        if (steady_tol > 0) {
+          window.push_back({s.time, s.dxy, s.inclination});
+          while (window.size() > 2 && window[1][0] <= s.time - 1.0) window.pop_front();
+          if (window.front()[0] <= s.time - 1.0 && s.step % 16 == 0) {
+            double dmin = 1e300, dmax = -1e300, tmin = 1e300, tmax = -1e300;
+            for (const auto& w : window) {
+              dmin = std::min(dmin, w[1]);
+              dmax = std::max(dmax, w[1]);
+              tmin = std::min(tmin, w[2]);
+              tmax = std::max(tmax, w[2]);
+            }
+            if (dmax - dmin < steady_tol && tmax - tmin < steady_tol) {
+              r.steady = true;
+              break;
+            }
+          }
+        }
+      }
+      const SimulationState& s = sim.state();
+      r.steps = s.step;
+      r.dxy = s.dxy;
+      r.theta = s.inclination;
+      r.time = s.time;
+      r.signed_d = std::abs(s.inclination) > M_PI / 4 ? s.dxy : -s.dxy;
+    } catch (const std::exception& e) {
+      r.error = e.what();
+    }
+    r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("  N = %d done (%ld steps, %.1f s)%s%s\n", n, r.steps, r.wall,
+                r.error.empty() ? "" : ": ", r.error.c_str());
+    std::fflush(stdout);
+    results.push_back(r);
+  }
+
+  const Result& finest = results.back();
+  const char* ref = feng ? "Feng" : "finest";
+  std::printf("\n%6s %6s %9s %8s %10s %10s %11s %6s %9s %8s %9s\n", "N", "M", "t", "D_xy",
+              feng ? "D(signed)" : "theta/pi", "|D-ref|", "|theta-ref|", "order", "steps", "wall s",
+              "ms/step");
+  double prev_err = NAN;
+  int prev_n = 0;
+  for (const Result& r : results) {
+    if (!r.error.empty()) {
+      std::printf("%6d %6d  failed: %s\n", r.n, r.m, r.error.c_str());
+      continue;
+    }
+    const double err = feng ? std::abs(r.signed_d - d_feng) : std::abs(r.dxy - finest.dxy);
+    const double terr = feng ? NAN : std::abs(r.theta - finest.theta);
+    const bool is_finest = &r == &finest && !feng;
+    double order = NAN;
+    if (prev_n > 0 && err > 0 && prev_err > 0 && !is_finest) {
+      order = std::log(prev_err / err) / std::log(static_cast<double>(r.n) / prev_n);
+    }
+    std::printf("%6d %6d %9.4g %8.5f %10.5f %10.3e %11.3e %6.2f %9ld %8.2f %9.3f%s\n", r.n, r.m,
+                r.time, r.dxy, feng ? r.signed_d : r.theta / M_PI, is_finest ? 0.0 : err,
+                is_finest ? 0.0 : terr, order, r.steps, r.wall,
+                r.steps > 0 ? 1e3 * r.wall / r.steps : 0.0, r.steady ? " steady" : "");
+    if (!is_finest) {
+      prev_err = err;
+      prev_n = r.n;
+    }
+  }
+  std::printf("(differences to %s; order from consecutive rows)\n", ref);
+  return 0;
+}
+
+const CommandRegistration kConverge({"converge",
+                                     "grid/marker refinement study of a scene (D_xy, theta, order)",
+                                     kUsage, Converge});
+
+}  // namespace
+}  // namespace ehd::cli
