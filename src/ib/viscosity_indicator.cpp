@@ -23,7 +23,7 @@ int WrapIndex(int i, int n, bool periodic) {
 
 }  // namespace
 
-double SmoothedHeaviside(double d, double h) {
+double ViscosityIndicator::SmoothedHeaviside(double d, double h) {
   if (d <= -2.0 * h) return 0.0;
   if (d >= 2.0 * h) return 1.0;
   const double x = d / (2.0 * h);

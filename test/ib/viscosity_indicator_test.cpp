@@ -12,6 +12,8 @@
 namespace ehd {
 namespace {
 
+double SmoothedHeaviside(double d, double h) { return ViscosityIndicator::SmoothedHeaviside(d, h); }
+
 Grid2D LatticeGrid(int n) { return Grid2D{n, n, 1.0, -0.5 * n, -0.5 * n}; }
 
 TEST(SmoothedHeaviside, ShapeOfEq117) {

@@ -29,11 +29,11 @@
 
 namespace ehd {
 
-// eq. (117); h > 0.
-double SmoothedHeaviside(double signed_distance, double h);
-
 class ViscosityIndicator {
  public:
+  // H(d) of eq. (117); h > 0. (A static member so it cannot clash with another free function.)
+  static double SmoothedHeaviside(double signed_distance, double h);
+
   // margin in units of h (>= 0.5); throws std::invalid_argument for bad values.
   ViscosityIndicator(const Grid2D& grid, bool periodic_x, bool periodic_y, double viscosity_inside,
                      double viscosity_outside, double margin = 1.0);
