@@ -58,7 +58,7 @@ ViscosityIndicator::ViscosityIndicator(const Grid2D& grid, bool periodic_x, bool
   last_distance_.assign(n, std::numeric_limits<double>::infinity());
   stamp_.assign(n, 0);
   best_d2_.assign(n, 0.0);
-  best_s_.assign(n, 0.0);
+  best_sample_.assign(n, 0);
 }
 
 void ViscosityIndicator::Set(std::size_t node, double h_value) {
@@ -66,23 +66,56 @@ void ViscosityIndicator::Set(std::size_t node, double h_value) {
   viscosity_[node] = nu_in_ * (1.0 - h_value) + nu_out_ * h_value;  // exact at H = 0 and 1
 }
 
+ViscosityIndicator::SplinePoint ViscosityIndicator::Evaluate(int k, double t) const {
+  // Natural form of the cubic on [s_k, s_k + h] (periodic_spline.h), u = h - t:
+  //   S = M_k u^3/(6h) + M_{k+1} t^3/(6h) + (y_k/h - M_k h/6) u + (y_{k+1}/h - M_{k+1} h/6) t.
+  const int m = static_cast<int>(seg_h_.size());
+  const int kp = (k + 1 == m) ? 0 : k + 1;
+  const double h = seg_h_[k], u = h - t, inv6h = 1.0 / (6.0 * h);
+  auto eval = [&](const std::vector<double>& y, const std::vector<double>& mm, double* v,
+                  double* d1, double* d2) {
+    const double a = y[k] / h - mm[k] * h / 6.0, b = y[kp] / h - mm[kp] * h / 6.0;
+    *v = (mm[k] * u * u * u + mm[kp] * t * t * t) * inv6h + a * u + b * t;
+    *d1 = (-3.0 * mm[k] * u * u + 3.0 * mm[kp] * t * t) * inv6h - a + b;
+    *d2 = (mm[k] * u + mm[kp] * t) / h;
+  };
+  SplinePoint p;
+  eval(val_x_, m_x_, &p.x, &p.dx, &p.ddx);
+  eval(val_y_, m_y_, &p.y, &p.dy, &p.ddy);
+  return p;
+}
+
 void ViscosityIndicator::Sample(const ClosedCurve& curve) {
+  const int m = curve.size();
+  seg_h_.resize(m);
+  val_x_.resize(m);
+  val_y_.resize(m);
+  m_x_.resize(m);
+  m_y_.resize(m);
+  for (int k = 0; k < m; ++k) {
+    seg_h_[k] = ((k + 1 < m) ? curve.knot(k + 1) : curve.period()) - curve.knot(k);
+    val_x_[k] = curve.markers()(0, k);
+    val_y_[k] = curve.markers()(1, k);
+    m_x_[k] = curve.x_spline().SecondDerivativeAtKnot(k);
+    m_y_[k] = curve.y_spline().SecondDerivativeAtKnot(k);
+  }
+  orientation_ = curve.orientation();
   sample_x_.clear();
   sample_y_.clear();
-  sample_s_.clear();
-  const int m = curve.size();
+  sample_t_.clear();
+  sample_k_.clear();
   const double spacing = 0.5 * grid_.h;
   for (int k = 0; k < m; ++k) {
-    const double s0 = curve.knot(k);
-    const double s1 = (k + 1 < m) ? curve.knot(k + 1) : curve.period();
-    // Chord-length parameter: s1 - s0 is the chord; the spline segment is at most slightly
+    // Chord-length parameter: seg_h_ is the chord; the spline segment is at most slightly
     // longer for a resolved curve, so one more sample than chord / spacing keeps gaps < h/2.
-    const int n = static_cast<int>(std::ceil((s1 - s0) / spacing)) + 1;
+    const int n = static_cast<int>(std::ceil(seg_h_[k] / spacing)) + 1;
     for (int q = 0; q < n; ++q) {
-      const double s = s0 + (s1 - s0) * q / n;
-      sample_x_.push_back(curve.x_spline().Value(s));
-      sample_y_.push_back(curve.y_spline().Value(s));
-      sample_s_.push_back(s);
+      const double t = seg_h_[k] * q / n;
+      const SplinePoint p = Evaluate(k, t);
+      sample_x_.push_back(p.x);
+      sample_y_.push_back(p.y);
+      sample_t_.push_back(t);
+      sample_k_.push_back(k);
     }
   }
 }
@@ -129,27 +162,35 @@ void ViscosityIndicator::FullFill() {
   }
 }
 
-double ViscosityIndicator::LocalSignedDistance(const ClosedCurve& curve, double s,
-                                               const Eigen::Vector2d& p) const {
+double ViscosityIndicator::LocalSignedDistance(int k, double t, const Eigen::Vector2d& p) const {
   // Newton on g(s) = (X(s) - p) . X'(s) from the nearest sample (within ~h/4 of the foot
-  // point), steps limited to h/2; stops at 1e-9 h, far below what H can resolve.
-  const PeriodicCubicSpline& xs = curve.x_spline();
-  const PeriodicCubicSpline& ys = curve.y_spline();
+  // point), steps limited to h/2, moving to the neighbouring segment when t leaves [0, h_k];
+  // stops at 1e-9 h, far below what H can resolve.
+  const int m = static_cast<int>(seg_h_.size());
+  SplinePoint c = Evaluate(k, t);
   for (int it = 0; it < 6; ++it) {
-    const Eigen::Vector2d x(xs.Value(s), ys.Value(s));
-    const Eigen::Vector2d d1(xs.Derivative(s), ys.Derivative(s));
-    const Eigen::Vector2d d2(xs.SecondDerivative(s), ys.SecondDerivative(s));
-    const double g = (x - p).dot(d1);
-    const double dg = d1.squaredNorm() + (x - p).dot(d2);
+    const double rx = c.x - p.x(), ry = c.y - p.y();
+    const double g = rx * c.dx + ry * c.dy;
+    const double dg = c.dx * c.dx + c.dy * c.dy + rx * c.ddx + ry * c.ddy;
     if (!(dg > 0.0)) break;
     const double step = std::clamp(g / dg, -0.5 * grid_.h, 0.5 * grid_.h);
-    s -= step;
+    t -= step;
+    while (t < 0.0) {
+      k = (k == 0) ? m - 1 : k - 1;
+      t += seg_h_[k];
+    }
+    while (t > seg_h_[k]) {
+      t -= seg_h_[k];
+      k = (k + 1 == m) ? 0 : k + 1;
+    }
+    c = Evaluate(k, t);
     if (std::abs(step) < 1e-9 * grid_.h) break;
   }
-  const CurvePoint c = curve.At(s);
-  const Eigen::Vector2d r = p - c.position;
-  const double dist = r.norm();
-  return r.dot(c.normal) >= 0.0 ? dist : -dist;
+  // Outward normal n = o (t_y, -t_x) for the spline direction X' (closed_curve.h).
+  const double rx = p.x() - c.x, ry = p.y() - c.y;
+  const double dist = std::hypot(rx, ry);
+  const double outward = orientation_ * (rx * c.dy - ry * c.dx);
+  return outward >= 0.0 ? dist : -dist;
 }
 
 void ViscosityIndicator::Update(const ClosedCurve& curve) {
@@ -194,10 +235,10 @@ void ViscosityIndicator::Update(const ClosedCurve& curve) {
           stamp_[node] = counter_;
           band_.push_back(node);
           best_d2_[node] = d2;
-          best_s_[node] = sample_s_[q];
+          best_sample_[node] = q;
         } else if (d2 < best_d2_[node]) {
           best_d2_[node] = d2;
-          best_s_[node] = sample_s_[q];
+          best_sample_[node] = q;
         }
       }
     }
@@ -207,13 +248,12 @@ void ViscosityIndicator::Update(const ClosedCurve& curve) {
   for (std::size_t node : band_) {
     const int i = static_cast<int>(node % static_cast<std::size_t>(grid_.nx));
     const int j = static_cast<int>(node / static_cast<std::size_t>(grid_.nx));
-    const double s = best_s_[node];
-    // Periodic image of the node nearest to the foot point (markers may be unwrapped).
+    const int q = best_sample_[node];
+    // Periodic image of the node nearest to the sample (markers may be unwrapped).
     Eigen::Vector2d p(grid_.x(i), grid_.y(j));
-    const Eigen::Vector2d foot(curve.x_spline().Value(s), curve.y_spline().Value(s));
-    if (periodic_x_) p.x() += width * std::round((foot.x() - p.x()) / width);
-    if (periodic_y_) p.y() += height * std::round((foot.y() - p.y()) / height);
-    const double d = LocalSignedDistance(curve, s, p);
+    if (periodic_x_) p.x() += width * std::round((sample_x_[q] - p.x()) / width);
+    if (periodic_y_) p.y() += height * std::round((sample_y_[q] - p.y()) / height);
+    const double d = LocalSignedDistance(sample_k_[q], sample_t_[q], p);
     last_distance_[node] = d;
     Set(node, SmoothedHeaviside(d, h));
     if (!full) updated_.push_back(node);

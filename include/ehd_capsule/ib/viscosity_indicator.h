@@ -50,10 +50,15 @@ class ViscosityIndicator {
   double viscosity_outside() const { return nu_out_; }
 
  private:
+  // Evaluates the curve's splines on segment k at local offset t (no knot search).
+  struct SplinePoint {
+    double x, y, dx, dy, ddx, ddy;
+  };
+  SplinePoint Evaluate(int k, double t) const;
   void Sample(const ClosedCurve& curve);
   void FullFill();
   void Set(std::size_t node, double h_value);
-  double LocalSignedDistance(const ClosedCurve& curve, double s, const Eigen::Vector2d& p) const;
+  double LocalSignedDistance(int k, double t, const Eigen::Vector2d& p) const;
 
   Grid2D grid_;
   bool periodic_x_, periodic_y_;
@@ -64,14 +69,19 @@ class ViscosityIndicator {
   std::vector<double> viscosity_, heaviside_;
   std::vector<double> last_distance_;  // signed distance at the last band visit
   std::vector<std::uint32_t> stamp_;   // update counter when a node was last touched
-  std::vector<double> best_d2_, best_s_;
+  std::vector<double> best_d2_;
+  std::vector<int> best_sample_;
   std::vector<std::size_t> band_, previous_band_, updated_;
   std::uint32_t counter_ = 0;
   bool has_state_ = false;
   bool last_full_ = false;
   Eigen::Matrix2Xd previous_markers_;
-  // Dense samples of the spline (positions and parameters), rebuilt per update.
-  std::vector<double> sample_x_, sample_y_, sample_s_;
+  // The curve's spline data per update: knot spacing, values and knot second derivatives.
+  std::vector<double> seg_h_, val_x_, val_y_, m_x_, m_y_;
+  int orientation_ = 1;
+  // Dense samples of the spline (position, segment, offset in the segment), rebuilt per update.
+  std::vector<double> sample_x_, sample_y_, sample_t_;
+  std::vector<int> sample_k_;
   std::vector<double> crossings_;
 };
 
