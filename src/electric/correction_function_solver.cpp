@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -20,6 +21,13 @@ constexpr int kDi[4] = {1, -1, 0, 0};
 constexpr int kDj[4] = {0, 0, 1, -1};
 // Half width of the block of grid points used to continue f across Sigma (5 x 5 block).
 constexpr int kSourceFitRadius = 2;
+
+// Shortest round-trip text of a double (std::to_string prints fixed 6 decimals).
+std::string Text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
 
 CfmLocalCauchy MakeCauchy(const CorrectionFunctionOptions& options) {
   return CfmLocalCauchy(options.basis, options.penalty);
@@ -207,8 +215,8 @@ InterfaceSolveReport CorrectionFunctionSolver::Solve(const ClosedCurve& curve,
   const double sm = problem.sigma_minus, sp = problem.sigma_plus;
   if (!(sm > 0.0) || !(sp > 0.0) || std::abs(sm - sp) > 1e-12 * std::max(sm, sp)) {
     throw std::invalid_argument(
-        "CorrectionFunctionSolver: needs equal conductivities > 0, got sigma_minus = " +
-        std::to_string(sm) + ", sigma_plus = " + std::to_string(sp) +
+        "CorrectionFunctionSolver: needs equal conductivities > 0, got sigma_minus = " + Text(sm) +
+        ", sigma_plus = " + Text(sp) +
         " (use the fast immersed interface method for sigma^- != sigma^+)");
   }
   const Grid2D& g = grid_;
