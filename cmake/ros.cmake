@@ -9,3 +9,17 @@ if(EHD_ROS_SOURCES)
   target_compile_options(ehd_capsule_node PRIVATE ${EHD_WARNINGS})
   add_dependencies(ehd_capsule_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 endif()
+
+# Integration tests: rostest launch files in test/ros/, run by CTest one at a time (each starts its
+# own roscore on the rostest port).
+if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
+  find_package(rostest REQUIRED)
+  file(GLOB EHD_ROSTESTS RELATIVE ${CMAKE_CURRENT_SOURCE_DIR} CONFIGURE_DEPENDS
+       ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/*.test)
+  foreach(rostest_file ${EHD_ROSTESTS})
+    add_rostest(${rostest_file} DEPENDENCIES ehd_capsule_node)
+    string(REPLACE "/" "_" rostest_name ${rostest_file})
+    set_tests_properties(_ctest_${PROJECT_NAME}_rostest_${rostest_name}
+                         PROPERTIES RUN_SERIAL TRUE TIMEOUT 300 LABELS "ros;integration")
+  endforeach()
+endif()

@@ -1,0 +1,111 @@
+// ehd_capsule_node: a thin roscpp layer over ehd::Simulation.
+//
+// Follows turtlesim: callbacks (dynamic_reconfigure, services) only record what was asked; the
+// step loop applies the requests before the next step and publishes after it, all on one thread,
+// so nothing needs a lock. Topics and parameters are private (~state, ~shape, ~markers, ~scene),
+// so several copies run side by side in their own namespaces.
+//
+// The node records the bag itself (rosbag C++ API) when ~record is true: every published
+// CapsuleState, shape, marker array and clock tick is written on the same thread that publishes
+// it, so the bag holds exactly one CapsuleState per published step, and it is closed on finish,
+// on Ctrl-C and when the simulation stops on an error.
+#pragma once
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <dynamic_reconfigure/server.h>
+#include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <std_srvs/Trigger.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ehd_capsule/CapsuleState.h"
+#include "ehd_capsule/SimulationConfig.h"
+#include "ehd_capsule/coupling/simulation.h"
+#include "ehd_capsule/scene/scene.h"
+
+namespace ehd::ros_node {
+
+class CapsuleNode {
+ public:
+  // Reads the private parameters, loads and builds the scene. Throws std::exception with a clear
+  // message if the scene is invalid (main() logs it and exits non-zero).
+  CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  ~CapsuleNode();
+
+  // Steps until ~steps is reached (returns 0) or ROS shuts down (returns 0). A simulation error
+  // stops the stepping but not the node; it then waits for shutdown and returns 0 as well, so
+  // roslaunch is never taken down by a crash.
+  int Run();
+
+ private:
+  enum class RunState { kRunning, kPaused, kFailed, kFinished };
+
+  void ReadParameters();
+  void BuildSimulation();
+  void OpenBag();
+  void CloseBag();
+  void OnReconfigure(ehd_capsule::SimulationConfig& config, uint32_t level);
+  bool OnPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
+  bool OnResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
+  bool OnReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
+  bool OnAdvance(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
+  void ApplyPendingRequests();
+  void StepOnce();
+  void PublishState();
+  void PublishDiagnostics(bool force);
+  void Fail(const std::string& reason);
+  ros::Time StampNow() const;
+  template <typename M>
+  void Record(const std::string& topic, const M& msg, const ros::Time& stamp);
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle pnh_;
+
+  // Parameters.
+  std::string scene_name_;
+  std::vector<std::string> overrides_;
+  long max_steps_ = 0;  // 0: run until shutdown
+  int publish_every_ = 1;
+  std::string frame_id_ = "ehd";
+  double force_arrow_scale_ = 1.0;
+  bool velocity_arrows_ = false;
+  int velocity_stride_ = 8;
+  double max_step_rate_ = 0.0;  // steps per wall second, 0: as fast as possible
+  bool record_ = false;
+  std::string bag_path_;
+  bool use_sim_time_ = false;
+
+  Scene scene_;
+  std::unique_ptr<Simulation> sim_;
+  RunState run_state_ = RunState::kRunning;
+  std::string failure_;
+
+  // Requests recorded by callbacks, applied by the loop.
+  std::optional<double> pending_ca_e_;
+  std::optional<double> pending_ca_;
+  bool pending_reset_ = false;
+  long advance_remaining_ = 0;
+  int advance_steps_ = 1;
+  ehd_capsule::SimulationConfig config_;
+  bool config_dirty_ = false;  // config_ must be pushed back to dynamic_reconfigure
+
+  ros::Publisher state_pub_, shape_pub_, markers_pub_, scene_pub_, clock_pub_, diag_pub_;
+  ros::ServiceServer pause_srv_, resume_srv_, reset_srv_, advance_srv_;
+  std::unique_ptr<dynamic_reconfigure::Server<ehd_capsule::SimulationConfig>> reconfigure_;
+  boost::recursive_mutex reconfigure_mutex_;
+
+  rosbag::Bag bag_;
+  bool bag_open_ = false;
+  long published_states_ = 0;
+
+  ros::WallTime last_diag_;
+  ros::WallTime rate_window_start_;
+  long rate_window_steps_ = 0;
+  double step_rate_ = 0.0;
+};
+
+}  // namespace ehd::ros_node

@@ -1,0 +1,40 @@
+// Conversion of the simulator's state into ROS messages (no ROS logic, no state of its own).
+//
+// Messages carry the scene's dimensionless values, never bare lattice numbers: positions are in
+// units of the capsule radius a about the domain centre, the electric force density in units of
+// T/a (T = E_s for a capsule, gamma for a drop), time as SimulationState::time.
+#pragma once
+
+#include <geometry_msgs/PolygonStamped.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <string>
+
+#include "ehd_capsule/CapsuleState.h"
+#include "ehd_capsule/coupling/simulation.h"
+
+namespace ehd::ros_node {
+
+struct StateMessageSettings {
+  std::string frame_id = "ehd";
+  double force_arrow_scale = 1.0;  // arrow length (units of a) per unit dimensionless force
+  bool velocity_arrows = false;
+  int velocity_stride = 8;  // one velocity arrow every n grid cells
+};
+
+// Lattice length of the capsule radius a, and the lattice force-density scale T/a.
+double LatticeRadius(const Simulation& sim);
+double LatticeForceDensityScale(const Simulation& sim);
+
+ehd_capsule::CapsuleState MakeCapsuleState(const Simulation& sim,
+                                           const StateMessageSettings& settings,
+                                           const ros::Time& stamp);
+geometry_msgs::PolygonStamped MakeShape(const Simulation& sim, const StateMessageSettings& settings,
+                                        const ros::Time& stamp);
+// Membrane line strip, electric force arrows, optional velocity arrows, and a text overlay with
+// step, t, D_xy, theta, Ca and Ca_E.
+visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
+                                                const StateMessageSettings& settings,
+                                                const ros::Time& stamp);
+
+}  // namespace ehd::ros_node

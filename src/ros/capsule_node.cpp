@@ -1,0 +1,397 @@
+#include "ehd_capsule/ros/capsule_node.h"
+
+#include <geometry_msgs/PolygonStamped.h>
+#include <rosgraph_msgs/Clock.h>
+#include <std_msgs/String.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "ehd_capsule/ros/state_messages.h"
+
+namespace ehd::ros_node {
+
+CapsuleNode::CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
+    : nh_(nh), pnh_(private_nh) {
+  ReadParameters();
+  BuildSimulation();
+
+  state_pub_ = pnh_.advertise<ehd_capsule::CapsuleState>("state", 1000);
+  shape_pub_ = pnh_.advertise<geometry_msgs::PolygonStamped>("shape", 10);
+  markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 10);
+  scene_pub_ = pnh_.advertise<std_msgs::String>("scene", 1, /*latch=*/true);
+  diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
+  if (use_sim_time_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 100);
+
+  pause_srv_ = pnh_.advertiseService("pause", &CapsuleNode::OnPause, this);
+  resume_srv_ = pnh_.advertiseService("resume", &CapsuleNode::OnResume, this);
+  reset_srv_ = pnh_.advertiseService("reset", &CapsuleNode::OnReset, this);
+  advance_srv_ = pnh_.advertiseService("advance", &CapsuleNode::OnAdvance, this);
+
+  // The dynamic_reconfigure defaults are the scene's values, not the .cfg's.
+  config_.Ca_E = sim_->state().ca_e;
+  config_.Ca = sim_->state().ca;
+  config_.publish_every = publish_every_;
+  config_.paused = false;
+  config_.advance_steps = advance_steps_;
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<ehd_capsule::SimulationConfig>>(
+      reconfigure_mutex_, pnh_);
+  reconfigure_->updateConfig(config_);
+  reconfigure_->setCallback(
+      [this](ehd_capsule::SimulationConfig& c, uint32_t level) { OnReconfigure(c, level); });
+
+  std_msgs::String scene_msg;
+  scene_msg.data = scene_.yaml_text;
+  scene_pub_.publish(scene_msg);
+  OpenBag();
+  if (bag_open_) Record("scene", scene_msg, StampNow());
+
+  ROS_INFO_STREAM("ehd_capsule: scene '" << scene_name_ << "'\n" << sim_->Pipeline());
+  if (max_steps_ > 0) ROS_INFO("ehd_capsule: will stop after %ld steps", max_steps_);
+}
+
+CapsuleNode::~CapsuleNode() { CloseBag(); }
+
+void CapsuleNode::ReadParameters() {
+  pnh_.param<std::string>("scene", scene_name_, "shear_field");
+  int steps = 0;
+  pnh_.param("steps", steps, 0);
+  if (steps < 0)
+    throw std::invalid_argument("~steps must be >= 0 (got " + std::to_string(steps) + ")");
+  max_steps_ = steps;
+  pnh_.param("publish_every", publish_every_, 1);
+  if (publish_every_ < 1) {
+    throw std::invalid_argument("~publish_every must be >= 1 (got " +
+                                std::to_string(publish_every_) + ")");
+  }
+  pnh_.param<std::string>("frame_id", frame_id_, "ehd");
+  pnh_.param("force_arrow_scale", force_arrow_scale_, 1.0);
+  pnh_.param("velocity_arrows", velocity_arrows_, false);
+  pnh_.param("velocity_stride", velocity_stride_, 8);
+  if (velocity_stride_ < 1) throw std::invalid_argument("~velocity_stride must be >= 1");
+  pnh_.param("max_step_rate", max_step_rate_, 0.0);
+  pnh_.param("record", record_, false);
+  pnh_.param<std::string>("bag", bag_path_, "ehd_capsule.bag");
+  pnh_.param("advance_steps", advance_steps_, 1);
+  nh_.param("/use_sim_time", use_sim_time_, false);
+
+  // Scene overrides: ~set is a dictionary of top-level scene keys, e.g. {Ca: 0.1, N: 64}.
+  overrides_.clear();
+  XmlRpc::XmlRpcValue set;
+  if (pnh_.getParam("set", set)) {
+    if (set.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+      throw std::invalid_argument("~set must be a dictionary of scene keys, e.g. {Ca: 0.1}");
+    }
+    for (auto it = set.begin(); it != set.end(); ++it) {
+      std::ostringstream value;
+      XmlRpc::XmlRpcValue& v = it->second;
+      switch (v.getType()) {
+        case XmlRpc::XmlRpcValue::TypeDouble:
+          value << static_cast<double>(v);
+          break;
+        case XmlRpc::XmlRpcValue::TypeInt:
+          value << static_cast<int>(v);
+          break;
+        case XmlRpc::XmlRpcValue::TypeBoolean:
+          value << (static_cast<bool>(v) ? "true" : "false");
+          break;
+        case XmlRpc::XmlRpcValue::TypeString:
+          value << static_cast<std::string>(v);
+          break;
+        default:
+          throw std::invalid_argument("~set/" + it->first + ": only numbers, booleans and strings");
+      }
+      overrides_.push_back(it->first + "=" + value.str());
+    }
+  }
+  // Write the effective settings back so `rosparam get` shows what runs (turtlesim does too).
+  pnh_.setParam("scene", scene_name_);
+  pnh_.setParam("publish_every", publish_every_);
+  pnh_.setParam("frame_id", frame_id_);
+}
+
+void CapsuleNode::BuildSimulation() {
+  scene_ = LoadScene(scene_name_, overrides_);
+  sim_ = std::make_unique<Simulation>(scene_);
+}
+
+void CapsuleNode::OpenBag() {
+  if (!record_) return;
+  bag_.open(bag_path_, rosbag::bagmode::Write);
+  bag_open_ = true;
+  ROS_INFO("ehd_capsule: recording to %s", bag_path_.c_str());
+}
+
+void CapsuleNode::CloseBag() {
+  if (!bag_open_) return;
+  bag_.close();
+  bag_open_ = false;
+  ROS_INFO("ehd_capsule: bag %s closed with %ld states", bag_path_.c_str(), published_states_);
+}
+
+template <typename M>
+void CapsuleNode::Record(const std::string& topic, const M& msg, const ros::Time& stamp) {
+  // Topics are recorded under the node's resolved names so a replay republishes them there.
+  const std::string name = topic.front() == '/' ? topic : pnh_.resolveName(topic);
+  bag_.write(name, stamp.isZero() ? ros::Time(1e-9) : stamp, msg);
+}
+
+ros::Time CapsuleNode::StampNow() const {
+  if (use_sim_time_) return ros::Time(std::max(sim_->state().time, 0.0));
+  return ros::Time::now();
+}
+
+void CapsuleNode::OnReconfigure(ehd_capsule::SimulationConfig& config, uint32_t /*level*/) {
+  // Record only; the loop applies before the next step.
+  if (config.Ca_E != config_.Ca_E) pending_ca_e_ = config.Ca_E;
+  if (config.Ca != config_.Ca) pending_ca_ = config.Ca;
+  if (config.publish_every != config_.publish_every) {
+    publish_every_ = config.publish_every;
+    ROS_INFO("ehd_capsule: publish_every = %d from step %ld", publish_every_, sim_->state().step);
+  }
+  if (config.paused != config_.paused && run_state_ != RunState::kFailed &&
+      run_state_ != RunState::kFinished) {
+    run_state_ = config.paused ? RunState::kPaused : RunState::kRunning;
+    ROS_INFO("ehd_capsule: %s at step %ld", config.paused ? "paused" : "resumed",
+             sim_->state().step);
+  }
+  advance_steps_ = config.advance_steps;
+  // Ca_E and Ca stay at their applied values until the loop accepts them.
+  const double ca_e = config_.Ca_E, ca = config_.Ca;
+  config_ = config;
+  config_.Ca_E = ca_e;
+  config_.Ca = ca;
+}
+
+bool CapsuleNode::OnPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  if (run_state_ == RunState::kFailed || run_state_ == RunState::kFinished) {
+    res.success = false;
+    res.message = "simulation is not running: " + (failure_.empty() ? "finished" : failure_);
+    return true;
+  }
+  run_state_ = RunState::kPaused;
+  config_.paused = true;
+  config_dirty_ = true;
+  res.success = true;
+  res.message = "paused at step " + std::to_string(sim_->state().step);
+  ROS_INFO("ehd_capsule: %s", res.message.c_str());
+  return true;
+}
+
+bool CapsuleNode::OnResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  if (run_state_ != RunState::kPaused) {
+    res.success = false;
+    res.message =
+        run_state_ == RunState::kRunning ? "already running" : "cannot resume: " + failure_;
+    return true;
+  }
+  run_state_ = RunState::kRunning;
+  config_.paused = false;
+  config_dirty_ = true;
+  res.success = true;
+  res.message = "resumed at step " + std::to_string(sim_->state().step);
+  ROS_INFO("ehd_capsule: %s", res.message.c_str());
+  return true;
+}
+
+bool CapsuleNode::OnReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  pending_reset_ = true;
+  res.success = true;
+  res.message = "reset queued; applied before the next step";
+  return true;
+}
+
+bool CapsuleNode::OnAdvance(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  if (run_state_ != RunState::kPaused) {
+    res.success = false;
+    res.message = "advance works while paused (call ~pause first)";
+    return true;
+  }
+  advance_remaining_ += advance_steps_;
+  res.success = true;
+  res.message = "advancing " + std::to_string(advance_steps_) + " steps from step " +
+                std::to_string(sim_->state().step);
+  return true;
+}
+
+void CapsuleNode::ApplyPendingRequests() {
+  if (pending_reset_) {
+    pending_reset_ = false;
+    sim_->Reset();
+    advance_remaining_ = 0;
+    if (run_state_ == RunState::kFailed || run_state_ == RunState::kFinished) {
+      run_state_ = config_.paused ? RunState::kPaused : RunState::kRunning;
+      failure_.clear();
+    }
+    config_.Ca_E = sim_->state().ca_e;
+    config_.Ca = sim_->state().ca;
+    config_dirty_ = true;
+    ROS_INFO("ehd_capsule: reset to the initial state of scene '%s'", scene_name_.c_str());
+  }
+  const long next_step = sim_->state().step + 1;
+  if (pending_ca_e_) {
+    const double value = *pending_ca_e_;
+    pending_ca_e_.reset();
+    try {
+      sim_->SetCaE(value);
+      config_.Ca_E = value;
+      ROS_INFO("ehd_capsule: Ca_E = %g from step %ld", value, next_step);
+    } catch (const std::exception& e) {
+      ROS_ERROR("ehd_capsule: refused Ca_E = %g: %s (Ca_E stays %g)", value, e.what(),
+                config_.Ca_E);
+    }
+    config_dirty_ = true;
+  }
+  if (pending_ca_) {
+    const double value = *pending_ca_;
+    pending_ca_.reset();
+    try {
+      sim_->SetCa(value);
+      config_.Ca = value;
+      ROS_INFO("ehd_capsule: Ca = %g from step %ld", value, next_step);
+    } catch (const std::exception& e) {
+      ROS_ERROR("ehd_capsule: refused Ca = %g: %s (Ca stays %g)", value, e.what(), config_.Ca);
+    }
+    config_dirty_ = true;
+  }
+  if (config_dirty_) {
+    config_dirty_ = false;
+    config_.publish_every = publish_every_;
+    reconfigure_->updateConfig(config_);
+  }
+}
+
+void CapsuleNode::Fail(const std::string& reason) {
+  run_state_ = RunState::kFailed;
+  failure_ = reason;
+  ROS_ERROR("ehd_capsule: simulation stopped at step %ld: %s", sim_->state().step, reason.c_str());
+  ROS_ERROR("ehd_capsule: the node stays up for inspection; call ~reset to start over");
+  PublishDiagnostics(true);
+  CloseBag();
+}
+
+void CapsuleNode::StepOnce() {
+  try {
+    sim_->Step();
+  } catch (const std::exception& e) {
+    Fail(e.what());
+    return;
+  }
+  ++rate_window_steps_;
+  const long step = sim_->state().step;
+  if (use_sim_time_) {
+    rosgraph_msgs::Clock clock;
+    clock.clock = StampNow();
+    clock_pub_.publish(clock);
+    if (bag_open_) Record("/clock", clock, clock.clock);
+  }
+  if (step % publish_every_ == 0) PublishState();
+  if (max_steps_ > 0 && step >= max_steps_) {
+    run_state_ = RunState::kFinished;
+    ROS_INFO("ehd_capsule: reached %ld steps (t = %g); stopping", step, sim_->state().time);
+  }
+}
+
+void CapsuleNode::PublishState() {
+  const ros::Time stamp = StampNow();
+  const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
+                                      velocity_stride_};
+  const ehd_capsule::CapsuleState state = MakeCapsuleState(*sim_, settings, stamp);
+  const geometry_msgs::PolygonStamped shape = MakeShape(*sim_, settings, stamp);
+  const visualization_msgs::MarkerArray markers = MakeMarkerArray(*sim_, settings, stamp);
+  state_pub_.publish(state);
+  shape_pub_.publish(shape);
+  markers_pub_.publish(markers);
+  ++published_states_;
+  if (bag_open_) {
+    Record("state", state, stamp);
+    Record("shape", shape, stamp);
+    Record("markers", markers, stamp);
+  }
+}
+
+void CapsuleNode::PublishDiagnostics(bool force) {
+  const ros::WallTime now = ros::WallTime::now();
+  if (!force && (now - last_diag_).toSec() < 1.0) return;
+  const double window = (now - rate_window_start_).toSec();
+  if (window > 0.0) step_rate_ = rate_window_steps_ / window;
+  rate_window_start_ = now;
+  rate_window_steps_ = 0;
+  last_diag_ = now;
+
+  diagnostic_msgs::DiagnosticArray array;
+  array.header.stamp = ros::Time::now();
+  diagnostic_msgs::DiagnosticStatus status;
+  status.name = "ehd_capsule: simulation";
+  status.hardware_id = scene_name_;
+  const SimulationState& s = sim_->state();
+  switch (run_state_) {
+    case RunState::kRunning:
+      status.level = status.OK;
+      status.message = "running";
+      break;
+    case RunState::kPaused:
+      status.level = status.OK;
+      status.message = "paused";
+      break;
+    case RunState::kFinished:
+      status.level = status.OK;
+      status.message = "finished";
+      break;
+    case RunState::kFailed:
+      status.level = status.ERROR;
+      status.message = failure_;
+      break;
+  }
+  auto add = [&status](const std::string& key, const std::string& value) {
+    diagnostic_msgs::KeyValue kv;
+    kv.key = key;
+    kv.value = value;
+    status.values.push_back(kv);
+  };
+  add("step", std::to_string(s.step));
+  add("time", std::to_string(s.time));
+  add("step_rate_hz", std::to_string(step_rate_));
+  add("gmres_iterations", std::to_string(s.gmres_iterations));
+  add("gmres_residual", std::to_string(s.gmres_residual));
+  add("area_drift", std::to_string(s.area_drift));
+  add("max_mach", std::to_string(s.max_mach));
+  add("Ca_E", std::to_string(s.ca_e));
+  add("Ca", std::to_string(s.ca));
+  array.status.push_back(status);
+  diag_pub_.publish(array);
+}
+
+int CapsuleNode::Run() {
+  rate_window_start_ = last_diag_ = ros::WallTime::now();
+  ros::WallTime next_step_time = ros::WallTime::now();
+  while (ros::ok()) {
+    ros::spinOnce();
+    ApplyPendingRequests();
+    PublishDiagnostics(false);
+    if (run_state_ == RunState::kFinished) break;
+    const bool may_step = run_state_ == RunState::kRunning ||
+                          (run_state_ == RunState::kPaused && advance_remaining_ > 0);
+    if (!may_step) {
+      ros::WallDuration(0.01).sleep();
+      continue;
+    }
+    if (max_step_rate_ > 0.0) {
+      const ros::WallTime now = ros::WallTime::now();
+      if (now < next_step_time) (next_step_time - now).sleep();
+      next_step_time = std::max(now, next_step_time) + ros::WallDuration(1.0 / max_step_rate_);
+    }
+    StepOnce();
+    if (run_state_ == RunState::kPaused && advance_remaining_ > 0) {
+      if (--advance_remaining_ == 0) {
+        ROS_INFO("ehd_capsule: advanced to step %ld (paused)", sim_->state().step);
+      }
+    }
+  }
+  PublishDiagnostics(true);
+  CloseBag();
+  return 0;
+}
+
+}  // namespace ehd::ros_node

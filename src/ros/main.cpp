@@ -1,0 +1,20 @@
+// ehd_capsule_node: owns an ehd::Simulation, steps it and publishes its state (see
+// include/ehd_capsule/ros/capsule_node.h). An invalid scene or parameter is a clear FATAL log and
+// exit code 1; a simulation error later stops the stepping but keeps the node up.
+#include <ros/ros.h>
+
+#include "ehd_capsule/ros/capsule_node.h"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "ehd_capsule");
+  ros::NodeHandle nh;
+  ros::NodeHandle pnh("~");
+  std::unique_ptr<ehd::ros_node::CapsuleNode> node;
+  try {
+    node = std::make_unique<ehd::ros_node::CapsuleNode>(nh, pnh);
+  } catch (const std::exception& e) {
+    ROS_FATAL("ehd_capsule: cannot start: %s", e.what());
+    return 1;
+  }
+  return node->Run();
+}

@@ -1,0 +1,47 @@
+#!/usr/bin/python3
+"""A recorded run (test/ros/bag.test) holds exactly steps/publish_every CapsuleState messages with
+consecutive published step numbers, the latched scene once, one shape and marker array per state,
+one clock tick per step, and is closed (readable, not .active) when the node stops."""
+import os
+import sys
+import time
+import unittest
+
+import rosbag
+import rospy
+import rostest
+
+
+class BagTest(unittest.TestCase):
+    def test_bag_has_one_state_per_published_step(self):
+        rospy.init_node("ehd_capsule_bag_test", anonymous=True)
+        path = rospy.get_param("~bag")
+        steps = rospy.get_param("~steps")
+        every = rospy.get_param("~publish_every")
+        end = time.time() + 150
+        # The node closes the bag when it reaches ~steps: wait for the file to be complete.
+        while time.time() < end:
+            if os.path.exists(path) and not os.path.exists(path + ".active"):
+                try:
+                    with rosbag.Bag(path) as bag:
+                        if bag.get_message_count("/ehd_capsule/state") > 0:
+                            break
+                except Exception:
+                    pass
+            time.sleep(0.2)
+        self.assertFalse(os.path.exists(path + ".active"), "bag was not closed")
+        with rosbag.Bag(path) as bag:
+            states = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/state"])]
+            counts = {t: bag.get_message_count(t) for t in
+                      ("/ehd_capsule/shape", "/ehd_capsule/markers", "/ehd_capsule/scene", "/clock")}
+        os.remove(path)
+        self.assertEqual(len(states), steps // every)
+        self.assertEqual([m.step for m in states], list(range(every, steps + 1, every)))
+        self.assertEqual(counts["/ehd_capsule/shape"], len(states))
+        self.assertEqual(counts["/ehd_capsule/markers"], len(states))
+        self.assertEqual(counts["/ehd_capsule/scene"], 1)
+        self.assertEqual(counts["/clock"], steps)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("ehd_capsule", "bag_contents", BagTest, sys.argv)

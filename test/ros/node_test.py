@@ -1,0 +1,184 @@
+#!/usr/bin/python3
+"""Integration test of ehd_capsule_node (run by rostest from test/ros/node.test).
+
+What must hold, and why:
+- every step publishes one CapsuleState, so consecutive messages have consecutive step numbers;
+- the electric force density is linear in E^2, i.e. in Ca_E, for a fixed shape: doubling Ca_E
+  doubles it (up to the small shape change between two steps), and Ca_E = 0 gives none;
+- a neutral capsule in a uniform field feels no net electric force: the resultant is small
+  against the total magnitude of the force density;
+- a change made through dynamic_reconfigure shows in the next message;
+- pause stops the steps, advance takes exactly `advance_steps` steps, resume continues;
+- an invalid scene makes the node exit non-zero with a message naming the problem.
+"""
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import threading
+import unittest
+
+import rospy
+import rostest
+import dynamic_reconfigure.client
+from std_srvs.srv import Trigger
+from ehd_capsule.msg import CapsuleState
+
+NODE = "/ehd_capsule"
+
+
+class StateRecorder:
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.messages = []
+        self.sub = rospy.Subscriber(NODE + "/state", CapsuleState, self.on_state, queue_size=1000)
+
+    def on_state(self, msg):
+        with self.lock:
+            self.messages.append(msg)
+
+    def snapshot(self):
+        with self.lock:
+            return list(self.messages)
+
+    def wait_for(self, predicate, timeout=60.0):
+        import time  # wall clock: sim time stands still while paused
+        end = time.time() + timeout
+        while time.time() < end and not rospy.is_shutdown():
+            msgs = self.snapshot()
+            for m in msgs:
+                if predicate(m):
+                    return m
+            time.sleep(0.02)
+        return None
+
+    def wait_count(self, n, timeout=60.0):
+        import time
+        end = time.time() + timeout
+        while time.time() < end and len(self.snapshot()) < n:
+            time.sleep(0.02)
+        return self.snapshot()
+
+
+def force_magnitude_sum(msg):
+    return sum(math.hypot(f.x, f.y) for f in msg.electric_force)
+
+
+class NodeTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("ehd_capsule_node_test", anonymous=True)
+        cls.rec = StateRecorder()
+        rospy.wait_for_service(NODE + "/pause", timeout=60)
+        cls.client = dynamic_reconfigure.client.Client(NODE, timeout=60)
+
+    def call(self, name):
+        rospy.wait_for_service(NODE + "/" + name, timeout=30)
+        return rospy.ServiceProxy(NODE + "/" + name, Trigger)()
+
+    def test_1_consecutive_steps(self):
+        msgs = self.rec.wait_count(30)
+        self.assertGreaterEqual(len(msgs), 30, "fewer than 30 states in 60 s")
+        steps = [m.step for m in msgs[:30]]
+        for a, b in zip(steps, steps[1:]):
+            self.assertEqual(b, a + 1, "steps %s are not consecutive" % steps)
+        times = [m.time for m in msgs[:30]]
+        self.assertTrue(all(t2 > t1 for t1, t2 in zip(times, times[1:])))
+        for m in msgs[:30]:
+            self.assertEqual(len(m.markers), 32)
+            self.assertTrue(math.isfinite(m.dxy) and 0.0 <= m.dxy < 1.0)
+
+    def test_2_ca_e_changes_force(self):
+        self.client.update_configuration({"Ca_E": 0.0})
+        m0 = self.rec.wait_for(lambda m: m.ca_e == 0.0)
+        self.assertIsNotNone(m0, "Ca_E = 0 never showed in a state message")
+        later = self.rec.wait_for(lambda m: m.ca_e == 0.0 and m.step > m0.step)
+        self.assertLess(force_magnitude_sum(later), 1e-12, "force at Ca_E = 0")
+
+        self.client.update_configuration({"Ca_E": 0.1})
+        m1 = self.rec.wait_for(lambda m: abs(m.ca_e - 0.1) < 1e-12)
+        self.assertIsNotNone(m1, "Ca_E = 0.1 never showed in a state message")
+        f1 = force_magnitude_sum(m1)
+        self.assertGreater(f1, 0.0)
+        # Neutral capsule: net force small against the total force density.
+        net = math.hypot(m1.electric_force_total.x, m1.electric_force_total.y)
+        per_length = f1 / len(m1.electric_force) * 2.0 * math.pi  # ~ total magnitude on r = a
+        self.assertLess(net, 0.05 * per_length, "net electric force %g vs %g" % (net, per_length))
+
+        self.client.update_configuration({"Ca_E": 0.2})
+        m2 = self.rec.wait_for(lambda m: abs(m.ca_e - 0.2) < 1e-12)
+        self.assertIsNotNone(m2)
+        f2 = force_magnitude_sum(m2)
+        self.assertAlmostEqual(f2 / f1, 2.0, delta=0.2)
+
+    def test_3_ca_changes(self):
+        msgs = self.rec.snapshot()
+        old = msgs[-1].ca
+        new = old * 0.5 if old > 0 else 0.01
+        self.client.update_configuration({"Ca": new})
+        m = self.rec.wait_for(lambda m: abs(m.ca - new) < 1e-12)
+        self.assertIsNotNone(m, "Ca change never showed")
+
+    def test_4_refuses_out_of_range(self):
+        last = self.rec.snapshot()[-1]
+        self.client.update_configuration({"Ca_E": -0.5})
+        import time
+        time.sleep(1.0)
+        msgs = self.rec.snapshot()
+        self.assertTrue(all(m.ca_e >= 0.0 for m in msgs), "a negative Ca_E was applied")
+        cfg = self.client.get_configuration(timeout=10)
+        self.assertGreaterEqual(cfg["Ca_E"], 0.0, "refused value still shown as set")
+        self.assertGreater(msgs[-1].step, last.step, "node stopped after a refused value")
+
+    def test_5_pause_advance_resume(self):
+        import time
+        self.assertTrue(self.call("pause").success)
+        time.sleep(0.5)
+        a = self.rec.snapshot()[-1].step
+        time.sleep(1.0)
+        b = self.rec.snapshot()[-1].step
+        self.assertEqual(a, b, "steps advanced while paused")
+        self.client.update_configuration({"advance_steps": 5})
+        self.assertTrue(self.call("advance").success)
+        m = self.rec.wait_for(lambda m: m.step == b + 5, timeout=30)
+        self.assertIsNotNone(m, "advance did not reach step %d" % (b + 5))
+        time.sleep(0.5)
+        self.assertEqual(self.rec.snapshot()[-1].step, b + 5, "advance overshot")
+        self.assertTrue(self.call("resume").success)
+        m = self.rec.wait_for(lambda m: m.step > b + 10, timeout=30)
+        self.assertIsNotNone(m, "did not resume")
+
+    def test_6_reset(self):
+        self.assertTrue(self.call("reset").success)
+        start = len(self.rec.snapshot())
+        import time
+        end = time.time() + 30
+        found = None
+        while time.time() < end and found is None:
+            for m in self.rec.snapshot()[start:]:
+                if m.step == 1:
+                    found = m
+                    break
+            time.sleep(0.05)
+        self.assertIsNotNone(found, "no step-1 state after reset")
+
+    def test_7_invalid_scene_exits_with_message(self):
+        node = os.path.join(os.environ.get("EHD_NODE_DIR", ""), "ehd_capsule_node")
+        if not os.path.exists(node):
+            import rospkg  # noqa: F401
+            out = subprocess.run(["catkin_find", "--libexec", "ehd_capsule"],
+                                 capture_output=True, text=True).stdout.split()
+            node = os.path.join(out[0], "ehd_capsule_node") if out else "ehd_capsule_node"
+        with tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False) as f:
+            f.write("Ca: 0.05\nCa_E: [not, a, number]\n")
+            bad = f.name
+        for scene, expect in ((bad, "Ca_E"), ("/nonexistent/scene.yaml", "scene")):
+            p = subprocess.run([node, "__name:=ehd_bad_scene", "_scene:=" + scene],
+                               capture_output=True, text=True, timeout=60)
+            self.assertNotEqual(p.returncode, 0, "node accepted %s" % scene)
+            self.assertIn(expect, p.stdout + p.stderr)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("ehd_capsule", "node_behaviour", NodeTest, sys.argv)
