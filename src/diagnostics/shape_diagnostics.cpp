@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "ehd_capsule/geometry/curve_segments.h"
+
 namespace ehd {
 namespace {
 
@@ -19,20 +21,19 @@ constexpr double kGaussWeight[5] = {0.118463442528095, 0.239314335249683, 0.2844
 ShapeDiagnostics MeasureShape(const ClosedCurve& c) {
   ShapeDiagnostics d;
   const int m = c.size();
-  const PeriodicCubicSpline& xs = c.x_spline();
-  const PeriodicCubicSpline& ys = c.y_spline();
+  CurveSegments seg;  // segment-local evaluation, no knot search
+  seg.Update(c);
   // Moments about a reference point (the first marker) to limit cancellation; integrals along
   // the spline parameter; the sign of the area fixes the orientation.
   const Eigen::Vector2d ref = c.markers().col(0);
   double a2 = 0.0, mx = 0.0, my = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
   for (int k = 0; k < m; ++k) {
-    const double s0 = c.knot(k);
-    const double s1 = (k + 1 < m) ? c.knot(k + 1) : c.period();
+    const double hk = seg.segment_parameter_length(k);
     for (int q = 0; q < 5; ++q) {
-      const double s = s0 + kGaussNode[q] * (s1 - s0);
-      const double w = kGaussWeight[q] * (s1 - s0);
-      const double x = xs.Value(s) - ref.x(), y = ys.Value(s) - ref.y();
-      const double dx = xs.Derivative(s), dy = ys.Derivative(s);
+      const SplineDerivatives p = seg.Evaluate(k, kGaussNode[q] * hk);
+      const double w = kGaussWeight[q] * hk;
+      const double x = p.x - ref.x(), y = p.y - ref.y();
+      const double dx = p.dx, dy = p.dy;
       a2 += w * (x * dy - y * dx);
       mx += w * x * x * dy;             // 2 int x dA
       my -= w * y * y * dx;             // 2 int y dA
@@ -49,7 +50,8 @@ ShapeDiagnostics MeasureShape(const ClosedCurve& c) {
   const double ixy = sxy / area - cx * cy;
   d.area = std::abs(area);
   d.centroid = ref + Eigen::Vector2d(cx, cy);
-  d.length = c.ArcLength();
+  d.length = 0.0;
+  for (int k = 0; k < m; ++k) d.length += seg.SegmentArcLength(k);
   const double mean = 0.5 * (ixx + iyy);
   const double radius = std::hypot(0.5 * (ixx - iyy), ixy);
   const double l1 = mean + radius, l2 = std::max(mean - radius, 0.0);

@@ -6,15 +6,20 @@
 #include <stdexcept>
 #include <string>
 
+#include "ehd_capsule/geometry/curve_segments.h"
+
 namespace ehd {
 
 void MarkerArcElements(const ClosedCurve& c, std::vector<double>& dl) {
+  // Segment-local spline evaluation (no knot search); same values as c.SegmentArcLength(k).
+  thread_local CurveSegments segments;
+  segments.Update(c);
   const int m = c.size();
   if (static_cast<int>(dl.size()) != m) dl.resize(m);
-  const double last = c.SegmentArcLength(m - 1);
+  const double last = segments.SegmentArcLength(m - 1);
   double prev = last;
   for (int k = 0; k < m; ++k) {
-    const double seg = (k + 1 < m) ? c.SegmentArcLength(k) : last;
+    const double seg = (k + 1 < m) ? segments.SegmentArcLength(k) : last;
     dl[k] = 0.5 * (prev + seg);
     prev = seg;
   }

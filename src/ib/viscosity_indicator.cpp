@@ -66,52 +66,22 @@ void ViscosityIndicator::Set(std::size_t node, double h_value) {
   viscosity_[node] = nu_in_ * (1.0 - h_value) + nu_out_ * h_value;  // exact at H = 0 and 1
 }
 
-ViscosityIndicator::SplinePoint ViscosityIndicator::Evaluate(int k, double t) const {
-  // Natural form of the cubic on [s_k, s_k + h] (periodic_spline.h), u = h - t:
-  //   S = M_k u^3/(6h) + M_{k+1} t^3/(6h) + (y_k/h - M_k h/6) u + (y_{k+1}/h - M_{k+1} h/6) t.
-  const int m = static_cast<int>(seg_h_.size());
-  const int kp = (k + 1 == m) ? 0 : k + 1;
-  const double h = seg_h_[k], u = h - t, inv6h = 1.0 / (6.0 * h);
-  auto eval = [&](const std::vector<double>& y, const std::vector<double>& mm, double* v,
-                  double* d1, double* d2) {
-    const double a = y[k] / h - mm[k] * h / 6.0, b = y[kp] / h - mm[kp] * h / 6.0;
-    *v = (mm[k] * u * u * u + mm[kp] * t * t * t) * inv6h + a * u + b * t;
-    *d1 = (-3.0 * mm[k] * u * u + 3.0 * mm[kp] * t * t) * inv6h - a + b;
-    *d2 = (mm[k] * u + mm[kp] * t) / h;
-  };
-  SplinePoint p;
-  eval(val_x_, m_x_, &p.x, &p.dx, &p.ddx);
-  eval(val_y_, m_y_, &p.y, &p.dy, &p.ddy);
-  return p;
-}
-
 void ViscosityIndicator::Sample(const ClosedCurve& curve) {
+  segments_.Update(curve);
   const int m = curve.size();
-  seg_h_.resize(m);
-  val_x_.resize(m);
-  val_y_.resize(m);
-  m_x_.resize(m);
-  m_y_.resize(m);
-  for (int k = 0; k < m; ++k) {
-    seg_h_[k] = ((k + 1 < m) ? curve.knot(k + 1) : curve.period()) - curve.knot(k);
-    val_x_[k] = curve.markers()(0, k);
-    val_y_[k] = curve.markers()(1, k);
-    m_x_[k] = curve.x_spline().SecondDerivativeAtKnot(k);
-    m_y_[k] = curve.y_spline().SecondDerivativeAtKnot(k);
-  }
-  orientation_ = curve.orientation();
   sample_x_.clear();
   sample_y_.clear();
   sample_t_.clear();
   sample_k_.clear();
   const double spacing = 0.5 * grid_.h;
   for (int k = 0; k < m; ++k) {
-    // Chord-length parameter: seg_h_ is the chord; the spline segment is at most slightly
+    // Chord-length parameter: hk is the chord; the spline segment is at most slightly
     // longer for a resolved curve, so one more sample than chord / spacing keeps gaps < h/2.
-    const int n = static_cast<int>(std::ceil(seg_h_[k] / spacing)) + 1;
+    const double hk = segments_.segment_parameter_length(k);
+    const int n = static_cast<int>(std::ceil(hk / spacing)) + 1;
     for (int q = 0; q < n; ++q) {
-      const double t = seg_h_[k] * q / n;
-      const SplinePoint p = Evaluate(k, t);
+      const double t = hk * q / n;
+      const SplineDerivatives p = segments_.Evaluate(k, t);
       sample_x_.push_back(p.x);
       sample_y_.push_back(p.y);
       sample_t_.push_back(t);
@@ -166,8 +136,8 @@ double ViscosityIndicator::LocalSignedDistance(int k, double t, const Eigen::Vec
   // Newton on g(s) = (X(s) - p) . X'(s) from the nearest sample (within ~h/4 of the foot
   // point), steps limited to h/2, moving to the neighbouring segment when t leaves [0, h_k];
   // stops at 1e-9 h, far below what H can resolve.
-  const int m = static_cast<int>(seg_h_.size());
-  SplinePoint c = Evaluate(k, t);
+  const int m = segments_.size();
+  SplineDerivatives c = segments_.Evaluate(k, t);
   for (int it = 0; it < 6; ++it) {
     const double rx = c.x - p.x(), ry = c.y - p.y();
     const double g = rx * c.dx + ry * c.dy;
@@ -177,19 +147,19 @@ double ViscosityIndicator::LocalSignedDistance(int k, double t, const Eigen::Vec
     t -= step;
     while (t < 0.0) {
       k = (k == 0) ? m - 1 : k - 1;
-      t += seg_h_[k];
+      t += segments_.segment_parameter_length(k);
     }
-    while (t > seg_h_[k]) {
-      t -= seg_h_[k];
+    while (t > segments_.segment_parameter_length(k)) {
+      t -= segments_.segment_parameter_length(k);
       k = (k + 1 == m) ? 0 : k + 1;
     }
-    c = Evaluate(k, t);
+    c = segments_.Evaluate(k, t);
     if (std::abs(step) < 1e-9 * grid_.h) break;
   }
   // Outward normal n = o (t_y, -t_x) for the spline direction X' (closed_curve.h).
   const double rx = p.x() - c.x, ry = p.y() - c.y;
   const double dist = std::hypot(rx, ry);
-  const double outward = orientation_ * (rx * c.dy - ry * c.dx);
+  const double outward = segments_.orientation() * (rx * c.dy - ry * c.dx);
   return outward >= 0.0 ? dist : -dist;
 }
 

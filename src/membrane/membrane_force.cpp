@@ -20,6 +20,22 @@ void MarkerFrames::Update(const ClosedCurve& c) {
   }
 }
 
+void MarkerFrames::Update(const CurveSegments& c) {
+  const int m = c.size();
+  if (tangent.cols() != m) {
+    tangent.resize(2, m);
+    normal.resize(2, m);
+  }
+  curvature.resize(m);
+  orientation = c.orientation();
+  for (int k = 0; k < m; ++k) {
+    const CurvePoint p = c.AtMarker(k);
+    tangent.col(k) = p.tangent;
+    normal.col(k) = p.normal;
+    curvature[k] = p.curvature;
+  }
+}
+
 void MembraneForceDensity(const MarkerFrames& frames, const ArcLengthStencil& stencil,
                           const std::vector<double>& segment_tension, const std::vector<double>* q,
                           const std::vector<double>* dq_dl, std::vector<double>& tau_at_marker,

@@ -36,9 +36,11 @@ MembraneModel::MembraneModel(const MembraneParameters& p, const ClosedCurve& ref
 
   reference_length_.resize(m);
   reference_curvature_.resize(m);
+  // Same evaluation path as ComputeForce, so the reference shape gives exactly zero force.
+  segments_.Update(reference_shape);
   for (int k = 0; k < m; ++k) {
-    reference_length_[k] = reference_shape.SegmentArcLength(k);
-    reference_curvature_[k] = reference_shape.AtMarker(k).curvature;
+    reference_length_[k] = segments_.SegmentArcLength(k);
+    reference_curvature_[k] = segments_.AtMarker(k).curvature;
   }
   stretch_prev1_.assign(m, 1.0);
   stretch_prev2_.assign(m, 1.0);
@@ -61,12 +63,13 @@ void MembraneModel::ComputeForce(const ClosedCurve& curve, double dt,
         "MembraneModel::ComputeForce: dt must be > 0 with membrane viscosity, got " +
         std::to_string(dt));
   }
+  segments_.Update(curve);
   for (int k = 0; k < m; ++k) {
-    segment_length_[k] = curve.SegmentArcLength(k);
+    segment_length_[k] = segments_.SegmentArcLength(k);
     stretch_[k] = segment_length_[k] / reference_length_[k];
   }
   stencil_.Build(segment_length_);
-  frames_.Update(curve);
+  frames_.Update(segments_);
 
   std::fill(tau_segment_.begin(), tau_segment_.end(), 0.0);
   if (interfacial_) interfacial_->Add(tau_segment_);

@@ -236,7 +236,7 @@ TEST(MarkerArcElements, CircleElementsSumToPerimeter) {
   std::vector<double> seg(64), dl2;
   for (int k = 0; k < 64; ++k) seg[k] = c.SegmentArcLength(k);
   MarkerArcElementsFromSegments(seg, dl2);
-  for (int k = 0; k < 64; ++k) EXPECT_DOUBLE_EQ(dl2[k], dl[k]);
+  for (int k = 0; k < 64; ++k) EXPECT_NEAR(dl2[k], dl[k], 1e-14);
 }
 
 TEST(WrapCurveIntoDomain, ShiftsWholeCurveByPeriods) {

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "ehd_capsule/geometry/closed_curve.h"
+#include "ehd_capsule/geometry/curve_segments.h"
 #include "ehd_capsule/geometry/grid.h"
 
 namespace ehd {
@@ -50,11 +51,6 @@ class ViscosityIndicator {
   double viscosity_outside() const { return nu_out_; }
 
  private:
-  // Evaluates the curve's splines on segment k at local offset t (no knot search).
-  struct SplinePoint {
-    double x, y, dx, dy, ddx, ddy;
-  };
-  SplinePoint Evaluate(int k, double t) const;
   void Sample(const ClosedCurve& curve);
   void FullFill();
   void Set(std::size_t node, double h_value);
@@ -76,9 +72,7 @@ class ViscosityIndicator {
   bool has_state_ = false;
   bool last_full_ = false;
   Eigen::Matrix2Xd previous_markers_;
-  // The curve's spline data per update: knot spacing, values and knot second derivatives.
-  std::vector<double> seg_h_, val_x_, val_y_, m_x_, m_y_;
-  int orientation_ = 1;
+  CurveSegments segments_;  // the curve's splines, evaluated per segment
   // Dense samples of the spline (position, segment, offset in the segment), rebuilt per update.
   std::vector<double> sample_x_, sample_y_, sample_t_;
   std::vector<int> sample_k_;

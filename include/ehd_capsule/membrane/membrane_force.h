@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "ehd_capsule/geometry/closed_curve.h"
+#include "ehd_capsule/geometry/curve_segments.h"
 #include "ehd_capsule/membrane/arc_length_stencil.h"
 
 namespace ehd {
@@ -30,6 +31,7 @@ struct MarkerFrames {
   std::vector<double> curvature;
   int orientation = 1;
   void Update(const ClosedCurve& c);
+  void Update(const CurveSegments& c);  // same values, no knot search
 };
 
 // f (2 x M, resized if needed) from segment tensions tau (size M) and, if q != nullptr, the

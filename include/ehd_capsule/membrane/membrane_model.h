@@ -80,6 +80,7 @@ class MembraneModel {
   int history_ = 1;                                    // stored previous stretches (1 or 2)
 
   // Work buffers, sized once.
+  CurveSegments segments_;
   ArcLengthStencil stencil_;
   MarkerFrames frames_;
   std::vector<double> segment_length_, stretch_, stretch_rate_, tau_segment_, tau_marker_;
