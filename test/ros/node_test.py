@@ -164,16 +164,26 @@ class NodeTest(unittest.TestCase):
         self.assertIsNotNone(found, "no step-1 state after reset")
 
     def test_7_invalid_scene_exits_with_message(self):
-        node = os.path.join(os.environ.get("EHD_NODE_DIR", ""), "ehd_capsule_node")
-        if not os.path.exists(node):
-            import rospkg  # noqa: F401
-            out = subprocess.run(["catkin_find", "--libexec", "ehd_capsule"],
+        import re
+        import rospkg
+        libexec = subprocess.run(["catkin_find", "--libexec", "ehd_capsule"],
                                  capture_output=True, text=True).stdout.split()
-            node = os.path.join(out[0], "ehd_capsule_node") if out else "ehd_capsule_node"
-        with tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False) as f:
-            f.write("Ca: 0.05\nCa_E: [not, a, number]\n")
-            bad = f.name
-        for scene, expect in ((bad, "Ca_E"), ("/nonexistent/scene.yaml", "scene")):
+        self.assertTrue(libexec, "catkin_find cannot find ehd_capsule's executables")
+        node = os.path.join(libexec[0], "ehd_capsule_node")
+        shipped = os.path.join(rospkg.RosPack().get_path("ehd_capsule"), "config", "scenes",
+                               "shear_field.yaml")
+        with open(shipped) as f:
+            text = f.read()
+        cases = []
+        for pattern, replacement, expect in (
+                (r"(?m)^Ca_E:.*$", "Ca_E: [not, a, number]", "Ca_E"),  # wrong type
+                (r"(?m)^Ca:.*$", "Ca: -0.1", "Ca"),                    # out of range
+                (r"(?m)^N:.*$", "N: 64\nbogus_key: 1", "bogus_key")):  # unknown key
+            with tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False) as f:
+                f.write(re.sub(pattern, replacement, text))
+                cases.append((f.name, expect))
+        cases.append(("/nonexistent/scene.yaml", "scene"))
+        for scene, expect in cases:
             p = subprocess.run([node, "__name:=ehd_bad_scene", "_scene:=" + scene],
                                capture_output=True, text=True, timeout=60)
             self.assertNotEqual(p.returncode, 0, "node accepted %s" % scene)
