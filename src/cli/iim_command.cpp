@@ -120,7 +120,7 @@ const CommandRegistration kIim(
      "                   [--markers M] [--csv]\n"
      "Solves the example on N x N grids of [-1,1]^2 and prints per N the L-inf error against\n"
      "the exact solution, the error ratio, observed order, GMRES iterations and ms per solve.\n"
-     "--markers defaults to about one marker per grid spacing of arc length.\n",
+     "--markers defaults to a marker spacing of about 2 h of arc length.\n",
      RunIim});
 
 }  // namespace

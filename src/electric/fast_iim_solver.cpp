@@ -10,6 +10,21 @@
 #include "ehd_capsule/electric/jump_relations.h"
 
 namespace ehd {
+namespace {
+
+// Primitive of clamp(t, 0, 1).
+double ClampPrimitive(double t) { return t < 0.0 ? 0.0 : (t <= 1.0 ? 0.5 * t * t : t - 0.5); }
+
+// Area fraction of the unit square [-1/2, 1/2]^2 where a x + b y < c, (a, b) a unit vector.
+double HalfPlaneFraction(double a, double b, double c) {
+  if (std::abs(b) < std::abs(a)) std::swap(a, b);  // |b| >= 1/sqrt(2)
+  const double alpha = b > 0.0 ? c / b + 0.5 : 0.5 - c / b;
+  const double beta = b > 0.0 ? -a / b : a / b;
+  if (std::abs(beta) < 1e-12) return std::clamp(alpha, 0.0, 1.0);
+  return (ClampPrimitive(alpha + 0.5 * beta) - ClampPrimitive(alpha - 0.5 * beta)) / beta;
+}
+
+}  // namespace
 
 FastIimSolver::FastIimSolver(const Grid2D& grid, const PoissonBoundaries& bc,
                              const FastIimOptions& options)
@@ -45,10 +60,20 @@ void FastIimSolver::SolveForPotential(const ClosedCurve& curve, const double* g,
   ++poisson_solves_;
 }
 
+void FastIimSolver::ImposeInteriorFlux(double flux) {
+  if (!(sigma_minus_ > sigma_plus_)) return;
+  const int m = static_cast<int>(arc_weight_.size());
+  double sum = 0.0;
+  for (int k = 0; k < m; ++k) sum += dn_minus_[k] * arc_weight_[k];
+  const double shift = (flux - sum) / perimeter_;
+  for (int k = 0; k < m; ++k) dn_minus_[k] += shift;
+}
+
 void FastIimSolver::Residual(const ClosedCurve& curve, const double* g, bool with_data, double* r) {
   SolveForPotential(curve, g, with_data, phi_work_);
   const int m = curve.size();
   fit_.EvaluateNormal(phi_work_.data(), band_jump_.data(), dn_minus_.data());
+  ImposeInteriorFlux(with_data ? interior_flux_ : 0.0);
   const double jump = sigma_plus_ - sigma_minus_;
   for (int k = 0; k < m; ++k) {
     const double data = with_data ? v_[k] / jump : 0.0;
@@ -115,6 +140,48 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
   fit_.SideAverages(rhs_base_.data(), fm.data(), fp.data());
   for (int k = 0; k < m; ++k) fm[k] = fp[k] - fm[k];
   const PeriodicCubicSpline fjump = curve.FitScalar(fm);
+  // Interior flux: the integral of phi_n^- over the curve equals that of f^-/sigma^- over
+  // Omega^- (divergence theorem). Cells cut by the curve count with their inside fraction
+  // (half-plane through the closest point); outside centres take f^-/sigma^- from their inside
+  // neighbours.
+  arc_weight_.resize(m);
+  perimeter_ = 0.0;
+  for (int k = 0; k < m; ++k) {
+    arc_weight_[k] = 0.5 * (curve.SegmentArcLength((k + m - 1) % m) + curve.SegmentArcLength(k));
+    perimeter_ += arc_weight_[k];
+  }
+  interior_flux_ = 0.0;
+  for (std::size_t idx = 0; idx < grid.size(); ++idx) {
+    const int slot = classes_.band_slot(idx);
+    if (slot < 0 || std::abs(classes_.band_distance()[slot]) > 0.75 * h) {
+      if (classes_.side(idx) < 0) interior_flux_ += rhs_base_[idx];
+      continue;
+    }
+    const double s_star = classes_.band_parameter()[slot];
+    const CurvePoint c = curve.At(s_star);
+    const double fraction =
+        HalfPlaneFraction(c.normal.x(), c.normal.y(), -classes_.band_distance()[slot] / h);
+    if (fraction <= 0.0) continue;
+    double f_minus = rhs_base_[idx];
+    if (classes_.side(idx) > 0) {
+      // f^-/sigma^- extended from the inside neighbours (O(h) on an O(h^2) area).
+      const int i = static_cast<int>(idx % grid.nx), j = static_cast<int>(idx / grid.nx);
+      const int nb[4][2] = {{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}};
+      double sum = 0.0;
+      int count = 0;
+      for (const auto& q : nb) {
+        if (q[0] < 0 || q[0] >= grid.nx || q[1] < 0 || q[1] >= grid.ny) continue;
+        const std::size_t nidx = grid.index(q[0], q[1]);
+        if (classes_.side(nidx) < 0) {
+          sum += rhs_base_[nidx];
+          ++count;
+        }
+      }
+      f_minus = count > 0 ? sum / count : rhs_base_[idx] - fjump.Value(s_star);
+    }
+    interior_flux_ += fraction * f_minus;
+  }
+  interior_flux_ *= h * h;
   const bool has_w = !problem.w.empty();
   PeriodicCubicSpline ws;
   if (has_w) ws = curve.FitScalar(problem.w);
@@ -175,6 +242,7 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
   }
   SolveForPotential(curve, g.data(), true, phi);
   fit_.Evaluate(phi.data(), band_jump_.data(), dn_minus_.data(), dt_minus_.data());
+  ImposeInteriorFlux(interior_flux_);
   for (int k = 0; k < m; ++k) {
     dn_plus_[k] = dn_minus_[k] + g[k];
     dt_plus_[k] = dt_minus_[k] + w_s_[k];

@@ -17,6 +17,18 @@
 // [f/sigma] in J is estimated at the markers from the grid (weighted side averages, O(h), which
 // is enough since it multiplies d^2 = O(h^2)).
 //
+// Departure from the text for sigma^- > sigma^+: the scaled residual is then
+// phi_n^- - (sigma^+/(sigma^- - sigma^+)) G + ..., and a near-constant G changes phi_n^- very
+// little (a constant single layer is constant inside a circle), so the constant mode has an
+// eigenvalue ~ -sigma^+/sigma^- and the O(h^2) error of the fitted mean of phi_n^- is amplified
+// by sigma^-/sigma^+ (order and GMRES iterations degrade at sigma^-/sigma^+ >= 10). We replace
+// the mean of the fitted phi_n^- by its exact value from the divergence theorem,
+//   sum_k phi_n^-(X_k) dl_k = integral over Omega^- of f^-/sigma^- dA,
+// (the area integral by cut-cell fractions), so the constant mode of G is fixed by the flux
+// balance itself, as in the continuous problem. The same near-null behaviour hits modes of G
+// that the grid cannot resolve (wavelength ~2 marker spacings < ~4h), so for sigma^- > sigma^+
+// markers should be spaced >= ~1.5 h (GMRES iterations grow when they are denser).
+//
 // Cost per Solve: classification and fit set-up O(M + band), then (iterations + 2) Poisson
 // solves (+1 with a non-zero initial guess). Non-convergence throws SolverError.
 #pragma once
@@ -64,12 +76,17 @@ class FastIimSolver {
   const Grid2D& grid() const { return poisson_.grid(); }
   const FastIimOptions& options() const { return options_; }
   void set_options(const FastIimOptions& options) { options_ = options; }
+  // Integral of f^-/sigma^- over Omega^- (cut-cell quadrature) of the last Solve().
+  double interior_flux() const { return interior_flux_; }
   // Number of Poisson solves in the last Solve().
   int poisson_solves() const { return poisson_solves_; }
 
  private:
   // Residual R(g) (with_data) or its linear part R(g) - R(0) (without), into r.
   void Residual(const ClosedCurve& curve, const double* g, bool with_data, double* r);
+  // sigma^- > sigma^+ only: shifts phi_n^- by a constant so that its integral over the curve
+  // equals flux (see the file comment).
+  void ImposeInteriorFlux(double flux);
   // Fills band_jump_ for g (plus the data part if with_data) and solves for phi.
   void SolveForPotential(const ClosedCurve& curve, const double* g, bool with_data,
                          std::vector<double>& phi);
@@ -86,6 +103,9 @@ class FastIimSolver {
   std::vector<double> band_data_, band_gcoef_, band_gsscoef_, band_jump_;
   std::vector<double> dn_minus_, dn_plus_, dt_minus_, dt_plus_, w_s_;
   std::vector<double> scratch_;
+  std::vector<double> arc_weight_;  // dl_k at the markers
+  double perimeter_ = 0.0;
+  double interior_flux_ = 0.0;  // integral of f^-/sigma^- over Omega^-
   int poisson_solves_ = 0;
 };
 

@@ -51,7 +51,7 @@ struct InterfaceExample {
   std::function<double(const Eigen::Vector2d&)> laplace_minus, laplace_plus;
   // Markers at t_k = 2 pi k / M.
   Eigen::Matrix2Xd Markers(int count) const;
-  // Default marker count for an N x N grid on the box: about one marker per grid spacing of arc.
+  // Default marker count for an N x N grid on the box: marker spacing about 2 h of arc length.
   int DefaultMarkers(int n) const;
   // N x N cell-centred grid covering the box.
   Grid2D MakeGrid(int n) const;
