@@ -13,12 +13,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "ehd_capsule/coupling/viscosity_field.h"
 #include "ehd_capsule/diagnostics/shape_diagnostics.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
 #include "ehd_capsule/geometry/initial_shapes.h"
 #include "ehd_capsule/ib/immersed_boundary.h"
 #include "ehd_capsule/ib/marker_update.h"
+#include "ehd_capsule/ib/viscosity_indicator.h"
 #include "ehd_capsule/lbm/lattice_boltzmann_2d.h"
 #include "ehd_capsule/membrane/membrane_model.h"
 
@@ -29,7 +29,7 @@ struct Simulation::Impl {
   std::unique_ptr<ImmersedBoundary> ib;
   std::unique_ptr<MembraneModel> membrane;
   std::unique_ptr<LeakyDielectricSolver> electric;  // only with a field
-  std::unique_ptr<ViscosityField> viscosity;        // only with V != 1
+  std::unique_ptr<ViscosityIndicator> viscosity;    // only with V != 1
 
   MembraneParameters membrane_parameters;
   ClosedCurve curve;
@@ -46,7 +46,6 @@ struct Simulation::Impl {
   long last_solve_step = -1;
   double solved_field = -1.0;  // |E| of the last solve
   std::vector<double> dl;
-  std::vector<double> nu_field;
   std::vector<double> empty;
 
   double initial_area = 0.0;
@@ -133,7 +132,8 @@ Simulation::Simulation(const Scene& scene) : scene_(scene), units_(DeriveLattice
         grid_, units_.sigma_minus, units_.sigma_plus, units_.eps_minus, units_.eps_plus);
   }
   if (scene_.has_viscosity_contrast()) {
-    m.viscosity = std::make_unique<ViscosityField>(grid_, scene_.has_shear());
+    m.viscosity = std::make_unique<ViscosityIndicator>(grid_, scene_.has_shear(), false,
+                                                       units_.viscosity_inner, units_.viscosity);
   }
   Reset();
 }
@@ -180,8 +180,8 @@ void Simulation::Reset() {
   state_.area = d.area;
   state_.tt_phase = m.tt_angle;
   if (m.viscosity) {
-    m.viscosity->Update(m.curve, units_.viscosity_inner, units_.viscosity, m.nu_field);
-    m.fluid->SetViscosityField(m.nu_field);
+    m.viscosity->Update(m.curve);
+    m.fluid->SetViscosityField(m.viscosity->viscosity());
   }
 }
 
@@ -298,8 +298,8 @@ void Simulation::Step() {
   m.fluid->ClearForce();
   m.ib->Spread(m.X, m.marker_force, m.fluid->force_x(), m.fluid->force_y());
   if (m.viscosity) {
-    m.viscosity->Update(m.curve, units_.viscosity_inner, units_.viscosity, m.nu_field);
-    m.fluid->SetViscosityField(m.nu_field);
+    m.viscosity->Update(m.curve);
+    m.fluid->SetViscosityField(m.viscosity->viscosity());
   }
 
   // 4. Fluid.
@@ -616,8 +616,8 @@ void Simulation::Restore(const std::string& path) {
   }
   m.curve.Update(m.X);
   if (m.viscosity) {
-    m.viscosity->Update(m.curve, units_.viscosity_inner, units_.viscosity, m.nu_field);
-    m.fluid->SetViscosityField(m.nu_field);
+    m.viscosity->Update(m.curve);
+    m.fluid->SetViscosityField(m.viscosity->viscosity());
   }
   MarkerArcElements(m.curve, m.dl);
   const ShapeDiagnostics d = MeasureShape(m.curve);
