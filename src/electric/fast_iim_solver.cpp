@@ -216,15 +216,47 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
     for (int k = 0; k < m; ++k) g[k] = v_[k] / sigma_plus_;
     report.converged = true;
   } else {
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(m);
-    if (static_cast<int>(g.size()) == m) x = Eigen::Map<const Eigen::VectorXd>(g.data(), m);
-    Eigen::VectorXd b(m);
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(m);
-    Residual(curve, zero.data(), true, b.data());
+    // Control markers: every stride-th marker, so that their spacing is >= min_control_spacing_h
+    // h; G at the other markers is the periodic spline through the control values.
+    const double mean_spacing = curve.ArcLength() / m;
+    const int stride = std::max(
+        1, static_cast<int>(std::ceil(options_.min_control_spacing_h * h / mean_spacing - 1e-9)));
+    control_.clear();
+    for (int k = 0; k < m; k += stride) control_.push_back(k);
+    const int mc = static_cast<int>(control_.size());
+    if (mc < 4) {
+      throw std::invalid_argument("FastIimSolver: only " + std::to_string(mc) +
+                                  " control markers (curve too small for the grid?)");
+    }
+    control_knots_.resize(mc);
+    for (int c = 0; c < mc; ++c) control_knots_[c] = curve.knot(control_[c]);
+    g_full_.resize(m);
+    r_full_.resize(m);
+    auto expand = [&](const double* xc) {
+      if (stride == 1) {
+        std::copy(xc, xc + m, g_full_.begin());
+        return;
+      }
+      scratch_.assign(xc, xc + mc);
+      control_spline_.Fit(control_knots_, curve.period(), scratch_);
+      for (int k = 0; k < m; ++k) g_full_[k] = control_spline_.Value(curve.knot(k));
+    };
+    auto residual = [&](const double* xc, bool with_data, double* rc) {
+      expand(xc);
+      Residual(curve, g_full_.data(), with_data, r_full_.data());
+      for (int c = 0; c < mc; ++c) rc[c] = r_full_[control_[c]];
+    };
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(mc);
+    if (static_cast<int>(g.size()) == m) {
+      for (int c = 0; c < mc; ++c) x[c] = g[control_[c]];
+    }
+    Eigen::VectorXd b(mc);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(mc);
+    residual(zero.data(), true, b.data());
     b = -b;
     auto apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-      out.resize(m);
-      Residual(curve, in.data(), false, out.data());
+      out.resize(mc);
+      residual(in.data(), false, out.data());
     };
     const GmresResult r = gmres_.Solve(apply, b, x, options_.gmres);
     report.iterations = r.iterations;
@@ -235,10 +267,11 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
       msg << "FastIimSolver: GMRES did not converge: " << r.iterations << " iterations, residual "
           << r.residual << " > tolerance " << options_.gmres.tolerance
           << " x |b| = " << options_.gmres.tolerance * r.reference << " (sigma- = " << sigma_minus_
-          << ", sigma+ = " << sigma_plus_ << ", " << m << " markers)";
+          << ", sigma+ = " << sigma_plus_ << ", " << m << " markers, " << mc << " control)";
       throw SolverError(msg.str());
     }
-    g.assign(x.data(), x.data() + m);
+    expand(x.data());
+    g = g_full_;
   }
   SolveForPotential(curve, g.data(), true, phi);
   fit_.Evaluate(phi.data(), band_jump_.data(), dn_minus_.data(), dt_minus_.data());

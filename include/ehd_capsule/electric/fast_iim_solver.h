@@ -27,7 +27,8 @@
 // (the area integral by cut-cell fractions), so the constant mode of G is fixed by the flux
 // balance itself, as in the continuous problem. The same near-null behaviour hits modes of G
 // that the grid cannot resolve (wavelength ~2 marker spacings < ~4h), so for sigma^- > sigma^+
-// markers should be spaced >= ~1.5 h (GMRES iterations grow when they are denser).
+// GMRES therefore works on control markers spaced >= ~1.5 h (FastIimOptions), with G at the
+// other markers from the periodic spline through the control values.
 //
 // Cost per Solve: classification and fit set-up O(M + band), then (iterations + 2) Poisson
 // solves (+1 with a non-zero initial guess). Non-convergence throws SolverError.
@@ -49,6 +50,11 @@ struct FastIimOptions {
   GmresOptions gmres;
   double fit_radius_h = 3.0;  // WLS fit radius alpha in units of h
   double band_width_h = 3.5;  // closest points are found for |d| < band_width_h * h
+  // GMRES unknowns live on control markers spaced >= this many h (every k-th marker; G at the
+  // others is the periodic spline through them). Markers denser than the grid resolves would
+  // otherwise add modes of G that barely change phi_n^-, i.e. near-null modes of the Schur
+  // system for sigma^- > sigma^+.
+  double min_control_spacing_h = 1.5;
 };
 
 class FastIimSolver {
@@ -103,6 +109,9 @@ class FastIimSolver {
   std::vector<double> band_data_, band_gcoef_, band_gsscoef_, band_jump_;
   std::vector<double> dn_minus_, dn_plus_, dt_minus_, dt_plus_, w_s_;
   std::vector<double> scratch_;
+  std::vector<int> control_;  // marker indices of the GMRES unknowns
+  std::vector<double> control_knots_, g_full_, r_full_;
+  PeriodicCubicSpline control_spline_;
   std::vector<double> arc_weight_;  // dl_k at the markers
   double perimeter_ = 0.0;
   double interior_flux_ = 0.0;  // integral of f^-/sigma^- over Omega^-
