@@ -143,6 +143,27 @@ TEST(Simulation, SetCaAndSetCaETakeEffectAtTheNextStep) {
   EXPECT_NO_THROW(no_field.SetCaE(0.0));
 }
 
+// A membrane stiffer than the explicit limit (membrane_stability.h) is refused at set-up with a
+// suggestion; the suggested time-step refinement is then accepted (the limit scales with n since
+// E_s ~ nu^2 and mu ~ nu at fixed Re and Ca).
+TEST(Simulation, MembraneLimitFailsEarlyWithAUsableSuggestion) {
+  const std::vector<std::string> stiff = {"Ca=0.00005"};
+  std::string what;
+  try {
+    Simulation sim(ParseScene(kTinyCapsule, stiff));
+    FAIL() << "expected the membrane limit to be exceeded";
+  } catch (const SceneError& e) {
+    what = e.what();
+  }
+  const std::size_t at = what.find("membrane_substeps >= ");
+  ASSERT_NE(at, std::string::npos) << what;
+  const int n = std::stoi(what.substr(at + 21));
+  EXPECT_GT(n, 1);
+  std::vector<std::string> fixed = stiff;
+  fixed.push_back("numerics.membrane_substeps=" + std::to_string(n));
+  EXPECT_NO_THROW(Simulation(ParseScene(kTinyCapsule, fixed)));
+}
+
 // A capsule placed against the wall stops at once with an error naming the step and the wall.
 TEST(Simulation, WatchdogNamesStepAndQuantity) {
   Simulation sim(ParseScene(kTinyCapsule, {"geometry.center_y=2.8"}));
