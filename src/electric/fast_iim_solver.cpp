@@ -39,13 +39,23 @@ void FastIimSolver::SolveForPotential(const ClosedCurve& curve, const double* g,
   const int m = curve.size();
   scratch_.assign(g, g + m);
   const PeriodicCubicSpline gs = curve.FitScalar(scratch_);
-  const std::vector<double>& bs = classes_.band_parameter();
-  const int nb = classes_.band_size();
-  for (int b = 0; b < nb; ++b) {
-    double g_s = 0.0, g_ss = 0.0;
-    curve.ArcLengthDerivatives(gs, bs[b], &g_s, &g_ss);
-    band_jump_[b] = (with_data ? band_data_[b] : 0.0) + gs.Value(bs[b]) * band_gcoef_[b] +
-                    g_ss * band_gsscoef_[b];
+  for (int k = 0; k < m; ++k) g_second_[k] = gs.SecondDerivativeAtKnot(k);
+  // Cubic spline on the cached segment: S, S' and S'' in the spline parameter, then
+  // d^2/dl^2 = a S'' + c S' (see the band sample set-up in Solve()).
+  const double* __restrict y = g;
+  const double* __restrict mk = g_second_.data();
+  for (const BandSample& q : band_samples_) {
+    const int k1 = q.k + 1 < m ? q.k + 1 : 0;
+    const double u = q.hk - q.t;
+    const double ak = y[q.k] / q.hk - mk[q.k] * q.hk / 6.0;
+    const double bk = y[k1] / q.hk - mk[k1] * q.hk / 6.0;
+    const double value =
+        (mk[q.k] * u * u * u + mk[k1] * q.t * q.t * q.t) / (6.0 * q.hk) + ak * u + bk * q.t;
+    const double first = (-mk[q.k] * u * u + mk[k1] * q.t * q.t) / (2.0 * q.hk) - ak + bk;
+    const double second = (mk[q.k] * u + mk[k1] * q.t) / q.hk;
+    const double g_ss = q.a * second + q.c * first;
+    band_jump_[q.slot] = (with_data ? band_data_[q.slot] : 0.0) + value * band_gcoef_[q.slot] +
+                         g_ss * band_gsscoef_[q.slot];
   }
   if (with_data) {
     rhs_ = rhs_base_;
@@ -201,6 +211,31 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
     band_data_[b] = JumpDataPart(w, w_s, w_ss, fjump.Value(bs[b]), bk[b], kappa_s, bd[b]);
     band_gcoef_[b] = JumpGCoefficient(bd[b], bk[b]);
     band_gsscoef_[b] = JumpGssCoefficient(bd[b]);
+  }
+  // Band points whose J is used (neighbours across a stencil, outside WLS fit points), with
+  // their spline segment and the arc-length factors d^2/dl^2 = S''/|X'|^2 - S' X'.X''/|X'|^4.
+  band_used_.assign(nb, 0);
+  for (const auto& pair : classes_.crossing_pairs()) band_used_[pair.neighbour_slot] = 1;
+  for (int idx : fit_.points()) {
+    if (classes_.side(idx) > 0) band_used_[classes_.band_slot(idx)] = 1;
+  }
+  band_samples_.clear();
+  g_second_.resize(m);
+  for (int b = 0; b < nb; ++b) {
+    band_jump_[b] = 0.0;
+    if (!band_used_[b]) continue;
+    BandSample q;
+    q.slot = b;
+    q.k = curve.x_spline().Locate(bs[b], &q.t);
+    q.hk = (q.k + 1 < m ? curve.knot(q.k + 1) : curve.period()) - curve.knot(q.k);
+    const Eigen::Vector2d r1(curve.x_spline().Derivative(bs[b]),
+                             curve.y_spline().Derivative(bs[b]));
+    const Eigen::Vector2d r2(curve.x_spline().SecondDerivative(bs[b]),
+                             curve.y_spline().SecondDerivative(bs[b]));
+    const double speed2 = r1.squaredNorm();
+    q.a = 1.0 / speed2;
+    q.c = -r1.dot(r2) / (speed2 * speed2);
+    band_samples_.push_back(q);
   }
   for (int k = 0; k < m; ++k) {
     double w_ss = 0.0;

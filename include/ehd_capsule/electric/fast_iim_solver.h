@@ -75,7 +75,8 @@ class FastIimSolver {
   const std::vector<double>& normal_derivative_plus() const { return dn_plus_; }
   const std::vector<double>& tangential_derivative_minus() const { return dt_minus_; }
   const std::vector<double>& tangential_derivative_plus() const { return dt_plus_; }
-  // Jump J = phi^+_ext - phi^-_ext at the band points for the last solution.
+  // Jump J = phi^+_ext - phi^-_ext at the band points for the last solution (evaluated at the
+  // points the method uses: neighbours across a stencil and outside fit points; 0 elsewhere).
   const std::vector<double>& band_jump() const { return band_jump_; }
   const InterfaceClassification& classification() const { return classes_; }
   const NormalDerivativeFit& fit() const { return fit_; }
@@ -109,6 +110,14 @@ class FastIimSolver {
   std::vector<double> band_data_, band_gcoef_, band_gsscoef_, band_jump_;
   std::vector<double> dn_minus_, dn_plus_, dt_minus_, dt_plus_, w_s_;
   std::vector<double> scratch_;
+  struct BandSample {
+    int slot, k;   // band slot, spline segment
+    double t, hk;  // offset in the segment, segment length (spline parameter)
+    double a, c;   // d^2/dl^2 = a S'' + c S'
+  };
+  std::vector<BandSample> band_samples_;
+  std::vector<std::uint8_t> band_used_;
+  std::vector<double> g_second_;
   std::vector<int> control_;  // marker indices of the GMRES unknowns
   std::vector<double> control_knots_, g_full_, r_full_;
   PeriodicCubicSpline control_spline_;
