@@ -8,6 +8,7 @@
 
 #include "command.h"
 #include "ehd_capsule/coupling/simulation.h"
+#include "ehd_capsule/coupling/steady_state.h"
 #include "ehd_capsule/scene/scene.h"
 
 namespace ehd::cli {
@@ -82,26 +83,13 @@ int Converge(const std::vector<std::string>& args) {
     const auto start = std::chrono::steady_clock::now();
     try {
       Simulation sim(LoadScene(scene_name, o));
-      std::deque<std::array<double, 3>> window;
+      SteadyStateMonitor monitor(steady_tol > 0 ? steady_tol : 1.0);
       while (sim.state().time < t_end - 1e-12) {
         sim.Step();
         const SimulationState& s = sim.state();
-        if (steady_tol > 0) {
-          window.push_back({s.time, s.dxy, s.inclination});
-          while (window.size() > 2 && window[1][0] <= s.time - 1.0) window.pop_front();
-          if (window.front()[0] <= s.time - 1.0 && s.step % 16 == 0) {
-            double dmin = 1e300, dmax = -1e300, tmin = 1e300, tmax = -1e300;
-            for (const auto& w : window) {
-              dmin = std::min(dmin, w[1]);
-              dmax = std::max(dmax, w[1]);
-              tmin = std::min(tmin, w[2]);
-              tmax = std::max(tmax, w[2]);
-            }
-            if (dmax - dmin < steady_tol && tmax - tmin < steady_tol) {
-              r.steady = true;
-              break;
-            }
-          }
+        if (steady_tol > 0 && monitor.Update(s.time, s.dxy, s.inclination)) {
+          r.steady = true;
+          break;
         }
       }
       const SimulationState& s = sim.state();

@@ -2,12 +2,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <iostream>
 #include <memory>
 
 #include "command.h"
 #include "ehd_capsule/coupling/simulation.h"
+#include "ehd_capsule/coupling/steady_state.h"
 #include "ehd_capsule/io/time_series.h"
 #include "ehd_capsule/io/vtk_output.h"
 #include "ehd_capsule/scene/scene.h"
@@ -35,10 +35,6 @@ const char* kUsage =
     "  --restart FILE    continue bit-for-bit from a checkpoint of the same scene\n"
     "Exit status 0 on success, 1 if the simulation stopped on an error (the message names the\n"
     "step and the quantity), 2 on a usage error.\n";
-
-struct Sample {
-  double t, dxy, theta;
-};
 
 int RunScene(const std::vector<std::string>& args) {
   std::string scene_name, csv_path, vtk_dir, checkpoint_path, restart_path;
@@ -132,7 +128,7 @@ int RunScene(const std::vector<std::string>& args) {
     vtk->WriteFrame(sim);
   }
 
-  std::deque<Sample> window;
+  SteadyStateMonitor monitor(steady_tol > 0 ? steady_tol : 1.0);
   const auto start = std::chrono::steady_clock::now();
   auto last_print = start;
   const long first_step = sim.state().step;
@@ -160,22 +156,9 @@ int RunScene(const std::vector<std::string>& args) {
       if (csv && s.step % csv_every == 0) csv->Write(sim);
       if (vtk && s.step % vtk_every == 0) vtk->WriteFrame(sim);
       if (checkpoint_every > 0 && s.step % checkpoint_every == 0) sim.Save(checkpoint_path);
-      if (steady_tol > 0) {
-        window.push_back({s.time, s.dxy, s.inclination});
-        while (window.size() > 2 && window[1].t <= s.time - 1.0) window.pop_front();
-        if (window.front().t <= s.time - 1.0 && s.step % 16 == 0) {
-          double dmin = 1e300, dmax = -1e300, tmin = 1e300, tmax = -1e300;
-          for (const Sample& w : window) {
-            dmin = std::min(dmin, w.dxy);
-            dmax = std::max(dmax, w.dxy);
-            tmin = std::min(tmin, w.theta);
-            tmax = std::max(tmax, w.theta);
-          }
-          if (dmax - dmin < steady_tol && tmax - tmin < steady_tol) {
-            steady = true;
-            break;
-          }
-        }
+      if (steady_tol > 0 && monitor.Update(s.time, s.dxy, s.inclination)) {
+        steady = true;
+        break;
       }
       const auto now = std::chrono::steady_clock::now();
       if (!quiet && std::chrono::duration<double>(now - last_print).count() >= progress_s) {

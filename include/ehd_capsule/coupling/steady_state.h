@@ -1,0 +1,33 @@
+// Steady-state detection for `--until-steady TOL`: the run is steady when, over the last unit of
+// time (a window of length `window` in the scene's time unit), both D_xy and the inclination
+// theta varied by less than TOL (max - min over the samples with time >= t - window, once the
+// samples cover a full window). Samples must arrive with increasing time. Sliding-window
+// minima/maxima with monotone deques: O(1) amortised per sample.
+#pragma once
+
+#include <deque>
+
+namespace ehd {
+
+class SteadyStateMonitor {
+ public:
+  explicit SteadyStateMonitor(double tolerance, double window = 1.0);
+  // Adds a sample; returns true once the window is covered and both ranges are below tolerance.
+  bool Update(double time, double dxy, double inclination);
+  bool steady() const { return steady_; }
+
+ private:
+  struct Sample {
+    double t, value;
+  };
+  // Monotone deque: front is the min (or max) of the samples in the window.
+  static void Push(std::deque<Sample>& q, double t, double v, bool keep_min);
+  static void Expire(std::deque<Sample>& q, double t_cut);
+  double tolerance_, window_;
+  double first_time_ = 0.0;
+  bool started_ = false;
+  std::deque<Sample> dxy_min_, dxy_max_, theta_min_, theta_max_;
+  bool steady_ = false;
+};
+
+}  // namespace ehd
