@@ -92,6 +92,7 @@ Simulation::Simulation(const Scene& scene) : scene_(scene), units_(DeriveLattice
   LbmParameters p;
   p.nx = p.ny = scene_.N;
   p.viscosity = units_.viscosity;
+  p.threads = scene_.numerics.threads;
   p.boundary = scene_.has_shear() ? FluidBoundary::kShearWalls : FluidBoundary::kClosedBox;
   m.fluid = std::make_unique<LatticeBoltzmann2D>(p);
   grid_ = m.fluid->grid();

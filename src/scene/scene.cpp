@@ -345,6 +345,8 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
         n.Number("area_drift_limit", LeftOpen(0.0, 1.0), 0.05, "watchdog on |A/A0 - 1|");
     s.numerics.max_mach = n.Number("max_mach", LeftOpen(0.0, 0.5), 0.1,
                                    "watchdog on the lattice Mach number |u|/c_s");
+    s.numerics.threads =
+        static_cast<int>(n.Integer("threads", 0, 256, 0, "LBM OpenMP threads, 0 = OpenMP default"));
     n.RejectUnknown();
   }
   top.RejectUnknown();

@@ -64,6 +64,7 @@ struct SceneNumerics {
   double t_end = 10.0;                 // default run length (dimensionless time)
   double area_drift_limit = 0.05;      // watchdog: |A/A0 - 1|
   double max_mach = 0.1;               // watchdog: max |u| / c_s
+  int threads = 0;                     // LBM OpenMP threads (0: OpenMP default)
 };
 
 struct Scene {
