@@ -29,7 +29,7 @@ const char* kTinyDrop = R"(
 name: tiny_drop
 Oh: 1
 V: 1
-Ca_E: 0.5
+Ca_E: 0.2
 sigma_r: 4.75
 eps_r: 3.5
 N: 48
@@ -91,24 +91,27 @@ TEST(Simulation, CapsuleInShearDeformsFromZero) {
 }
 
 // Feng (2002), song2019 sec. 4.2.2: D = f_d Ca_E / (3 (1 + sigma_r)^2),
-// f_d = sigma_r^2 + sigma_r + 1 - 3 eps_r. sigma_r = 4.75, eps_r = 3.5: f_d = 17.8 > 0, prolate
-// along the field (y): major axis vertical. sigma_r = 1.75: f_d = -4.7 < 0, oblate: major axis
-// along x. Only the sign and orientation are checked on this coarse grid.
-TEST(Simulation, ElectricDropDeformsWithFengsSign) {
+// f_d = sigma_r^2 + sigma_r + 1 - 3 eps_r, D > 0 elongated along the field (y). sigma_r = 4.75,
+// eps_r = 3.5: f_d = 17.8, D = +0.0359 (prolate, major axis vertical); sigma_r = 1.75:
+// f_d = -4.69, D = -0.0413 (oblate, major axis along x). At Ca_E = 0.2 on a 48^2 grid in a box
+// of 4a the steady D agrees within 20% (first-order theory, unbounded domain; ehd_sim converge
+// electric_drop shows the grid-converged value about 6% below Feng for sigma_r = 1.75).
+TEST(Simulation, ElectricDropDeformsAsFengPredicts) {
   for (const double sigma_r : {4.75, 1.75}) {
     SCOPED_TRACE(sigma_r);
     Simulation sim(
         ParseScene(kTinyDrop, {"sigma_r=" + std::to_string(sigma_r), "numerics.electric_every=4"}));
-    RunUntil(sim, 2.0);
+    RunUntil(sim, 6.0);
     const double fd = sigma_r * sigma_r + sigma_r + 1 - 3 * 3.5;
-    const double d_theory = fd * 0.5 / (3 * (1 + sigma_r) * (1 + sigma_r));
-    EXPECT_GT(sim.state().dxy, 0.25 * std::abs(d_theory));
+    const double d_feng = fd * 0.2 / (3 * (1 + sigma_r) * (1 + sigma_r));
     const bool vertical = std::abs(sim.state().inclination) > M_PI / 4;
     EXPECT_EQ(vertical, fd > 0) << "inclination " << sim.state().inclination;
+    const double d_signed = vertical ? sim.state().dxy : -sim.state().dxy;
+    EXPECT_NEAR(d_signed, d_feng, 0.2 * std::abs(d_feng));
     // A neutral drop feels no net electric force (sum F_E dl = 0 up to discretisation).
     const double scale = sim.state().electric_force.cwiseAbs().maxCoeff() * 2 * M_PI * 6;
     EXPECT_LT(sim.state().electric_force_total.norm(), 0.05 * scale);
-    EXPECT_LT(std::abs(sim.state().area_drift), 0.02);
+    EXPECT_LT(std::abs(sim.state().area_drift), 0.01);
   }
 }
 
