@@ -29,6 +29,9 @@ class BagTest(unittest.TestCase):
                 except Exception:
                     pass
             time.sleep(0.2)
+        self.assertTrue(os.path.exists(path),
+                        "no closed bag at %s after 150 s (did the node die before closing it?)"
+                        % path)
         self.assertFalse(os.path.exists(path + ".active"), "bag was not closed")
         with rosbag.Bag(path) as bag:
             states = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/state"])]
