@@ -41,6 +41,7 @@ LeakyDielectricSolver::LeakyDielectricSolver(const Grid2D& grid, double sigma_mi
 
 void LeakyDielectricSolver::SetAppliedField(double e) {
   applied_field_ = e;
+  iim_.ResetWarmStart();
   const Grid2D& g = iim_.grid();
   problem_.boundary.y_min.assign(g.nx, e * g.y0);
   problem_.boundary.y_max.assign(g.nx, e * g.y_max());

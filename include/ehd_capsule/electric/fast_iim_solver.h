@@ -31,7 +31,8 @@
 // other markers from the periodic spline through the control values.
 //
 // Cost per Solve: classification and fit set-up O(M + band), then (iterations + 2) Poisson
-// solves (+1 with a non-zero initial guess). Non-convergence throws SolverError.
+// solves (warm or cold, see FastIimOptions::warm_start_refresh). Non-convergence throws
+// SolverError.
 #pragma once
 
 #include <memory>
@@ -55,6 +56,10 @@ struct FastIimOptions {
   // otherwise add modes of G that barely change phi_n^-, i.e. near-null modes of the Schur
   // system for sigma^- > sigma^+.
   double min_control_spacing_h = 1.5;
+  // With an initial guess, GMRES solves for the correction and measures the tolerance against
+  // |b| = |R(0)| of the last cold solve (saves the Poisson solve for R(0)); every
+  // warm_start_refresh-th warm solve is a cold one, which refreshes |b|. 0: always cold.
+  int warm_start_refresh = 20;
 };
 
 class FastIimSolver {
@@ -85,6 +90,9 @@ class FastIimSolver {
   void set_options(const FastIimOptions& options) { options_ = options; }
   // Integral of f^-/sigma^- over Omega^- (cut-cell quadrature) of the last Solve().
   double interior_flux() const { return interior_flux_; }
+  // Forget |b| of the last cold solve (call when the data change abruptly, e.g. a new applied
+  // field); the next Solve() is cold.
+  void ResetWarmStart() { reference_norm_ = 0.0; }
   // Number of Poisson solves in the last Solve().
   int poisson_solves() const { return poisson_solves_; }
 
@@ -125,6 +133,9 @@ class FastIimSolver {
   double perimeter_ = 0.0;
   double interior_flux_ = 0.0;  // integral of f^-/sigma^- over Omega^-
   int poisson_solves_ = 0;
+  double reference_norm_ = 0.0;  // |R(0)| of the last cold solve
+  int reference_markers_ = 0;
+  int warm_solves_ = 0;
 };
 
 }  // namespace ehd
