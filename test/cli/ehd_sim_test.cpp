@@ -1,0 +1,117 @@
+// The contract of the `ehd_sim` front end, checked on the real binary: usage, errors that name
+// the bad key or option, the CSV time series, and a checkpoint restart that continues the run
+// bit-for-bit (the CSV of 40 straight steps equals 20 + restart + 20).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+Result RunSim(const std::string& args) {
+  const std::string cmd = std::string(EHD_SIM_BINARY) + " " + args + " 2>&1";
+  Result r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buffer;
+  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) r.output += buffer.data();
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string TempPath(const std::string& name) {
+  return ::testing::TempDir() + "ehd_sim_test_" + name;
+}
+
+TEST(EhdSim, HelpListsTheSubcommands) {
+  const Result r = RunSim("--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* command : {"run", "iim", "eforce", "converge", "stability"}) {
+    EXPECT_NE(r.output.find(std::string("  ") + command), std::string::npos) << command;
+  }
+}
+
+TEST(EhdSim, UnknownSubcommandAndOptionFail) {
+  Result r = RunSim("nonsense");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("unknown command 'nonsense'"), std::string::npos) << r.output;
+  r = RunSim("run capsule_shear --no-such-option");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--no-such-option"), std::string::npos) << r.output;
+}
+
+TEST(EhdSim, BadSceneValuesNameTheKey) {
+  Result r = RunSim("run capsule_shear --set Ca=-0.1 --steps 1");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("Ca"), std::string::npos) << r.output;
+  r = RunSim("run capsule_shear --set bogus_key=1 --steps 1");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("bogus_key"), std::string::npos) << r.output;
+  r = RunSim("run no_such_scene --steps 1");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("no_such_scene"), std::string::npos) << r.output;
+}
+
+TEST(EhdSim, CsvHasTheDocumentedColumnsAndOneRowPerStep) {
+  const std::string csv = TempPath("series.csv");
+  const Result r =
+      RunSim("run capsule_shear --set N=32 --set M=32 --steps 25 --quiet --csv " + csv);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::istringstream lines(ReadFile(csv));
+  std::string header;
+  std::getline(lines, header);
+  EXPECT_EQ(header.rfind("step,t,dxy,inclination,area,tt_phase", 0), 0u) << header;
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.empty()) ++rows;
+  }
+  // One row for the initial state (step 0) and one per step, or one per step only.
+  EXPECT_TRUE(rows == 25 || rows == 26) << rows;
+}
+
+TEST(EhdSim, RestartContinuesBitForBit) {
+  const std::string straight = TempPath("straight.csv");
+  const std::string first = TempPath("first.csv");
+  const std::string second = TempPath("second.csv");
+  const std::string checkpoint = TempPath("restart.ckpt");
+  const std::string scene = "run capsule_shear --set N=32 --set M=32 --quiet ";
+  ASSERT_EQ(RunSim(scene + "--steps 40 --csv " + straight).status, 0);
+  ASSERT_EQ(RunSim(scene + "--steps 20 --csv " + first + " --checkpoint " + checkpoint +
+                   " --checkpoint-every 20")
+                .status,
+            0);
+  // --steps counts the steps this invocation takes: 20 more after the checkpoint at step 20.
+  const Result r = RunSim(scene + "--steps 20 --csv " + second + " --restart " + checkpoint);
+  ASSERT_EQ(r.status, 0) << r.output;
+  // The last row of the straight run and of the restarted run must be identical text.
+  auto last_row = [](const std::string& text) {
+    std::istringstream in(text);
+    std::string line, last;
+    while (std::getline(in, line)) {
+      if (!line.empty()) last = line;
+    }
+    return last;
+  };
+  const std::string a = last_row(ReadFile(straight));
+  const std::string b = last_row(ReadFile(second));
+  EXPECT_EQ(a.substr(0, a.find(',')), "40");
+  EXPECT_EQ(a, b);
+}
+
+}  // namespace
