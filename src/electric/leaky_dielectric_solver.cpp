@@ -40,8 +40,10 @@ LeakyDielectricSolver::LeakyDielectricSolver(const Grid2D& grid, double sigma_mi
 }
 
 void LeakyDielectricSolver::SetAppliedField(double e) {
+  // A new field strength scales |b|: forget the warm-start reference (same value: keep it, the
+  // coupled step calls this before every solve).
+  if (e != applied_field_) iim_.ResetWarmStart();
   applied_field_ = e;
-  iim_.ResetWarmStart();
   const Grid2D& g = iim_.grid();
   problem_.boundary.y_min.assign(g.nx, e * g.y0);
   problem_.boundary.y_max.assign(g.nx, e * g.y_max());
