@@ -333,3 +333,46 @@ TEST(LeakyDielectricSolver, DenseMarkersAndHighConductivityRatioStillConvergeQui
 
 }  // namespace
 }  // namespace ehd
+
+namespace ehd {
+namespace {
+
+TEST(FastIimSolver, CorrectionTermsMakeTheLocalTruncationErrorSmallAtIrregularPoints) {
+  // Example 4 (phi^- = e^x cos y, phi^+ = 0, sigma = 1, so G = v exactly): apply the 5-point
+  // Laplacian to the exact solution and subtract F + C. Without C the residual at irregular
+  // points is O(jump / h^2); with the corrections it is the Taylor remainder of J (O(d^4 / h^2)
+  // = O(h^2), cubic expansion) plus the [d_xi(f/sigma)] term, i.e. it must fall with h.
+  const InterfaceExample e = MakeInterfaceExample("4");
+  double previous = 0.0;
+  for (int n : {40, 80}) {
+    const Grid2D g = e.MakeGrid(n);
+    const ClosedCurve c(e.Markers(e.DefaultMarkers(n)));
+    FastIimSolver solver(g, PoissonBoundaries{});
+    std::vector<double> gv, phi;
+    solver.Solve(c, SampleInterfaceProblem(e, g, c), gv, phi);
+    const std::vector<double> u = ExactSolution(e, g, c);
+    const auto& cls = solver.classification();
+    std::vector<double> correction(g.size(), 0.0);
+    for (const auto& p : cls.crossing_pairs()) {
+      correction[p.centre] += p.neighbour_side * solver.band_jump()[p.neighbour_slot] / (g.h * g.h);
+    }
+    double with = 0.0, without = 0.0;
+    for (int idx : cls.irregular_points()) {
+      const int i = idx % n, j = idx / n;
+      if (i == 0 || j == 0 || i == n - 1 || j == n - 1) continue;
+      const double lap = (u[idx - 1] + u[idx + 1] + u[idx - n] + u[idx + n] - 4 * u[idx]) /
+                         (g.h * g.h);  // f = 0 on both sides
+      with = std::max(with, std::abs(lap - correction[idx]));
+      without = std::max(without, std::abs(lap));
+    }
+    EXPECT_LT(with, 1e-2 * without) << n;
+    // O(h^2) would give 4, O(h) 2; spline errors of w'' and g'' still mix in at N = 80.
+    if (previous > 0.0) {
+      EXPECT_GT(previous / with, 2.5) << "local error must fall faster than O(h)";
+    }
+    previous = with;
+  }
+}
+
+}  // namespace
+}  // namespace ehd
