@@ -115,8 +115,9 @@ int RunIim(const std::vector<std::string>& args) {
 
 const CommandRegistration kIim(
     {"iim", "convergence tables of the fast IIM / CFM on the interface examples",
-     "usage: ehd_sim iim [--example 1|2|3|3a|3b|4|cfm1|cfm2|ellipse|star] [--method iim|cfm]\n"
-     "                   [--sigma-minus S] [--sigma-plus S] [--grids 40,80,160,320]\n"
+     "usage: ehd_sim iim [--example 1|2|3|3a|3b|4|cfm1|cfm2|ellipse|star|biconcave]\n"
+     "                   [--method iim|cfm] [--sigma-minus S] [--sigma-plus S]\n"
+     "                   [--grids 40,80,160,320]\n"
      "                   [--markers M] [--csv]\n"
      "Solves the example on N x N grids of [-1,1]^2 and prints per N the L-inf error against\n"
      "the exact solution, the error ratio, observed order, GMRES iterations and ms per solve.\n"

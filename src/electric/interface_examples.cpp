@@ -60,7 +60,7 @@ bool IsExample3(const std::string& name) { return name == "3" || name == "3a" ||
 }  // namespace
 
 std::vector<std::string> InterfaceExampleNames() {
-  return {"1", "2", "3", "3a", "3b", "4", "cfm1", "cfm2", "ellipse", "star"};
+  return {"1", "2", "3", "3a", "3b", "4", "cfm1", "cfm2", "ellipse", "star", "biconcave"};
 }
 
 InterfaceExample MakeInterfaceExample(const std::string& name) {
@@ -121,6 +121,14 @@ InterfaceExample MakeInterfaceExample(const std::string& name) {
     e.curve = [](double t) {
       const double r = 0.5 + 0.1 * std::sin(5 * t);
       return Vec(0.02 + r * std::cos(t), 0.01 + r * std::sin(t));
+    };
+    SetSmoothPair(e);
+  } else if (name == "biconcave") {
+    e.description = "biconcave (Evans-Fung profile, R=0.7, dimple 0.1 thick) at (0.02,0.01) (ours)";
+    e.curve = [](double t) {
+      const double radius = 0.7, c = std::cos(t);
+      return Vec(0.02 + radius * c, 0.01 + 0.5 * radius * std::sin(t) *
+                                               (0.207 + 2.003 * c * c - 1.123 * c * c * c * c));
     };
     SetSmoothPair(e);
   } else {

@@ -82,7 +82,7 @@ TEST(InterfaceClassification, CircleSidesIrregularPointsAndDistancesMatchGeometr
 }
 
 TEST(InterfaceClassification, NonCircularCurvesAgreeWithContains) {
-  for (const char* name : {"ellipse", "star"}) {
+  for (const char* name : {"ellipse", "star", "biconcave"}) {
     const InterfaceExample e = MakeInterfaceExample(name);
     const Grid2D g = e.MakeGrid(48);
     const ClosedCurve c(e.Markers(e.DefaultMarkers(48)));
@@ -178,8 +178,8 @@ TEST(FastIimSolver, SecondOrderOnReferenceExamplesAndBothSigmaOrderings) {
   }
 }
 
-TEST(FastIimSolver, SecondOrderOnEllipseAndStar) {
-  for (const char* name : {"ellipse", "star"}) {
+TEST(FastIimSolver, SecondOrderOnEllipseStarAndBiconcave) {
+  for (const char* name : {"ellipse", "star", "biconcave"}) {
     const InterfaceExample e = MakeInterfaceExample(name, 1.0, 5.0);
     const double e40 = SolveError(e, 40), e160 = SolveError(e, 160);
     // Average order over two halvings (the per-step ratio of a non-circular curve oscillates).
