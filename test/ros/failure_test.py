@@ -1,0 +1,53 @@
+#!/usr/bin/python3
+"""The scene test/ros/wall_touching.yaml puts the capsule within two cells of a wall, so the first
+step must fail (the immersed-boundary stencil would leave the domain). The node must report it
+(ERROR diagnostic naming the wall), close its bag, and stay up: its services still answer."""
+import os
+import sys
+import time
+import unittest
+
+import rosbag
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from std_srvs.srv import Trigger
+
+
+class FailureTest(unittest.TestCase):
+    def test_error_stops_stepping_but_not_the_node(self):
+        rospy.init_node("ehd_capsule_failure_test", anonymous=True)
+        path = rospy.get_param("~bag")
+        errors = []
+
+        def on_diag(msg):
+            for s in msg.status:
+                if s.name.startswith("ehd_capsule") and s.level == DiagnosticStatus.ERROR:
+                    errors.append(s)
+
+        rospy.Subscriber("/diagnostics", DiagnosticArray, on_diag)
+        end = time.time() + 60
+        while time.time() < end and not errors:
+            time.sleep(0.1)
+        self.assertTrue(errors, "no ERROR diagnostic within 60 s")
+        self.assertIn("wall", errors[0].message)
+        values = {kv.key: kv.value for kv in errors[0].values}
+        for key in ("step_rate_hz", "gmres_iterations", "area_drift"):
+            self.assertIn(key, values)
+
+        # The node is still alive and says why it does not step.
+        rospy.wait_for_service("/ehd_capsule/pause", timeout=10)
+        res = rospy.ServiceProxy("/ehd_capsule/pause", Trigger)()
+        self.assertFalse(res.success)
+        self.assertIn("wall", res.message)
+
+        # The bag is closed and readable.
+        self.assertTrue(os.path.exists(path), "no bag at %s" % path)
+        self.assertFalse(os.path.exists(path + ".active"), "bag left open")
+        with rosbag.Bag(path) as bag:
+            self.assertEqual(bag.get_message_count("/ehd_capsule/scene"), 1)
+        os.remove(path)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("ehd_capsule", "failure_handling", FailureTest, sys.argv)
