@@ -95,6 +95,56 @@ void FastIimSolver::Residual(const ClosedCurve& curve, const double* g, bool wit
   }
 }
 
+void FastIimSolver::ComputeInteriorFlux(const ClosedCurve& curve, const PeriodicCubicSpline& fjump,
+                                        bool f_is_zero) {
+  const Grid2D& grid = poisson_.grid();
+  const double h = grid.h;
+  const int m = curve.size();
+  // Interior flux: the integral of phi_n^- over the curve equals that of f^-/sigma^- over
+  // Omega^- (divergence theorem). Cells cut by the curve count with their inside fraction
+  // (half-plane through the closest point); outside centres take f^-/sigma^- from their inside
+  // neighbours.
+  arc_weight_.resize(m);
+  perimeter_ = 0.0;
+  for (int k = 0; k < m; ++k) {
+    arc_weight_[k] = 0.5 * (curve.SegmentArcLength((k + m - 1) % m) + curve.SegmentArcLength(k));
+    perimeter_ += arc_weight_[k];
+  }
+  interior_flux_ = 0.0;
+  if (f_is_zero) return;
+  for (std::size_t idx = 0; idx < grid.size(); ++idx) {
+    const int slot = classes_.band_slot(idx);
+    if (slot < 0 || std::abs(classes_.band_distance()[slot]) > 0.75 * h) {
+      if (classes_.side(idx) < 0) interior_flux_ += rhs_base_[idx];
+      continue;
+    }
+    const double s_star = classes_.band_parameter()[slot];
+    const CurvePoint c = curve.At(s_star);
+    const double fraction =
+        HalfPlaneFraction(c.normal.x(), c.normal.y(), -classes_.band_distance()[slot] / h);
+    if (fraction <= 0.0) continue;
+    double f_minus = rhs_base_[idx];
+    if (classes_.side(idx) > 0) {
+      // f^-/sigma^- extended from the inside neighbours (O(h) on an O(h^2) area).
+      const int i = static_cast<int>(idx % grid.nx), j = static_cast<int>(idx / grid.nx);
+      const int nb[4][2] = {{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}};
+      double sum = 0.0;
+      int count = 0;
+      for (const auto& q : nb) {
+        if (q[0] < 0 || q[0] >= grid.nx || q[1] < 0 || q[1] >= grid.ny) continue;
+        const std::size_t nidx = grid.index(q[0], q[1]);
+        if (classes_.side(nidx) < 0) {
+          sum += rhs_base_[nidx];
+          ++count;
+        }
+      }
+      f_minus = count > 0 ? sum / count : rhs_base_[idx] - fjump.Value(s_star);
+    }
+    interior_flux_ += fraction * f_minus;
+  }
+  interior_flux_ *= h * h;
+}
+
 InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const InterfaceProblem& problem,
                                           std::vector<double>& g, std::vector<double>& phi) {
   const auto start = std::chrono::steady_clock::now();
@@ -150,48 +200,7 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
   fit_.SideAverages(rhs_base_.data(), fm.data(), fp.data());
   for (int k = 0; k < m; ++k) fm[k] = fp[k] - fm[k];
   const PeriodicCubicSpline fjump = curve.FitScalar(fm);
-  // Interior flux: the integral of phi_n^- over the curve equals that of f^-/sigma^- over
-  // Omega^- (divergence theorem). Cells cut by the curve count with their inside fraction
-  // (half-plane through the closest point); outside centres take f^-/sigma^- from their inside
-  // neighbours.
-  arc_weight_.resize(m);
-  perimeter_ = 0.0;
-  for (int k = 0; k < m; ++k) {
-    arc_weight_[k] = 0.5 * (curve.SegmentArcLength((k + m - 1) % m) + curve.SegmentArcLength(k));
-    perimeter_ += arc_weight_[k];
-  }
-  interior_flux_ = 0.0;
-  for (std::size_t idx = 0; idx < grid.size(); ++idx) {
-    const int slot = classes_.band_slot(idx);
-    if (slot < 0 || std::abs(classes_.band_distance()[slot]) > 0.75 * h) {
-      if (classes_.side(idx) < 0) interior_flux_ += rhs_base_[idx];
-      continue;
-    }
-    const double s_star = classes_.band_parameter()[slot];
-    const CurvePoint c = curve.At(s_star);
-    const double fraction =
-        HalfPlaneFraction(c.normal.x(), c.normal.y(), -classes_.band_distance()[slot] / h);
-    if (fraction <= 0.0) continue;
-    double f_minus = rhs_base_[idx];
-    if (classes_.side(idx) > 0) {
-      // f^-/sigma^- extended from the inside neighbours (O(h) on an O(h^2) area).
-      const int i = static_cast<int>(idx % grid.nx), j = static_cast<int>(idx / grid.nx);
-      const int nb[4][2] = {{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}};
-      double sum = 0.0;
-      int count = 0;
-      for (const auto& q : nb) {
-        if (q[0] < 0 || q[0] >= grid.nx || q[1] < 0 || q[1] >= grid.ny) continue;
-        const std::size_t nidx = grid.index(q[0], q[1]);
-        if (classes_.side(nidx) < 0) {
-          sum += rhs_base_[nidx];
-          ++count;
-        }
-      }
-      f_minus = count > 0 ? sum / count : rhs_base_[idx] - fjump.Value(s_star);
-    }
-    interior_flux_ += fraction * f_minus;
-  }
-  interior_flux_ *= h * h;
+  ComputeInteriorFlux(curve, fjump, problem.f.empty());
   const bool has_w = !problem.w.empty();
   PeriodicCubicSpline ws;
   if (has_w) ws = curve.FitScalar(problem.w);

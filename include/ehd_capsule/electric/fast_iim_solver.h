@@ -102,6 +102,9 @@ class FastIimSolver {
   // sigma^- > sigma^+ only: shifts phi_n^- by a constant so that its integral over the curve
   // equals flux (see the file comment).
   void ImposeInteriorFlux(double flux);
+  // Arc weights dl_k, perimeter and interior_flux_ (integral of f^-/sigma^- over Omega^-).
+  void ComputeInteriorFlux(const ClosedCurve& curve, const PeriodicCubicSpline& fjump,
+                           bool f_is_zero);
   // Fills band_jump_ for g (plus the data part if with_data) and solves for phi.
   void SolveForPotential(const ClosedCurve& curve, const double* g, bool with_data,
                          std::vector<double>& phi);
