@@ -18,8 +18,8 @@ std::vector<int> ParseIntList(const std::string& option, const std::string& text
   std::size_t pos = 0;
   while (pos <= text.size()) {
     const std::size_t comma = text.find(',', pos);
-    const std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos
-                                                                          : comma - pos);
+    const std::string item =
+        text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
     out.push_back(static_cast<int>(ParseLong(option, item)));
     if (comma == std::string::npos) break;
     pos = comma + 1;

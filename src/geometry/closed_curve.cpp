@@ -19,7 +19,8 @@ constexpr double kGaussWeight[5] = {0.118463442528095, 0.239314335249683, 0.2844
 void ClosedCurve::Update(const Eigen::Matrix2Xd& markers) {
   const int m = static_cast<int>(markers.cols());
   if (m < 3) throw std::invalid_argument("ClosedCurve: need at least 3 markers");
-  if (!markers.allFinite()) throw std::invalid_argument("ClosedCurve: marker position is not finite");
+  if (!markers.allFinite())
+    throw std::invalid_argument("ClosedCurve: marker position is not finite");
   markers_ = markers;
   knots_.assign(m, 0.0);
   max_chord_ = 0.0;
@@ -32,8 +33,10 @@ void ClosedCurve::Update(const Eigen::Matrix2Xd& markers) {
                                   std::to_string(kp) + " coincide");
     }
     max_chord_ = std::max(max_chord_, chord);
-    if (kp != 0) knots_[kp] = knots_[k] + chord;
-    else period_ = knots_[k] + chord;
+    if (kp != 0)
+      knots_[kp] = knots_[k] + chord;
+    else
+      period_ = knots_[k] + chord;
     polygon_area2 += markers(0, k) * markers(1, kp) - markers(0, kp) * markers(1, k);
   }
   orientation_ = polygon_area2 >= 0.0 ? 1 : -1;

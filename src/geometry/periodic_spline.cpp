@@ -50,9 +50,9 @@ void PeriodicCubicSpline::Fit(const std::vector<double>& knots, double period,
                               const std::vector<double>& values) {
   const int n = static_cast<int>(knots.size());
   if (n < 3 || values.size() != knots.size()) {
-    throw std::invalid_argument("PeriodicCubicSpline: need at least 3 knots and one value each (got " +
-                                std::to_string(n) + " knots, " + std::to_string(values.size()) +
-                                " values)");
+    throw std::invalid_argument(
+        "PeriodicCubicSpline: need at least 3 knots and one value each (got " + std::to_string(n) +
+        " knots, " + std::to_string(values.size()) + " values)");
   }
   if (!(period > knots.back())) {
     throw std::invalid_argument("PeriodicCubicSpline: period must exceed the last knot");
