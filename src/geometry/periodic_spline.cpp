@@ -96,37 +96,32 @@ int PeriodicCubicSpline::Locate(double s, double* t) const {
   return k;
 }
 
-double PeriodicCubicSpline::Value(double s) const {
-  double t;
-  const int k = Locate(s, &t);
+PeriodicCubicSpline::Segment PeriodicCubicSpline::SegmentAt(double s) const {
+  Segment seg;
+  const int k = Locate(s, &seg.t);
   const int n = size();
   const int kp = (k + 1) % n;
   const double h = (k + 1 < n ? knots_[k + 1] : period_) - knots_[k];
-  const double b = (values_[kp] - values_[k]) / h - h * (2.0 * second_[k] + second_[kp]) / 6.0;
-  const double c = 0.5 * second_[k];
-  const double d = (second_[kp] - second_[k]) / (6.0 * h);
-  return values_[k] + t * (b + t * (c + t * d));
+  seg.a = values_[k];
+  seg.b = (values_[kp] - values_[k]) / h - h * (2.0 * second_[k] + second_[kp]) / 6.0;
+  seg.c = 0.5 * second_[k];
+  seg.d = (second_[kp] - second_[k]) / (6.0 * h);
+  return seg;
+}
+
+double PeriodicCubicSpline::Value(double s) const {
+  const Segment g = SegmentAt(s);
+  return g.a + g.t * (g.b + g.t * (g.c + g.t * g.d));
 }
 
 double PeriodicCubicSpline::Derivative(double s) const {
-  double t;
-  const int k = Locate(s, &t);
-  const int n = size();
-  const int kp = (k + 1) % n;
-  const double h = (k + 1 < n ? knots_[k + 1] : period_) - knots_[k];
-  const double b = (values_[kp] - values_[k]) / h - h * (2.0 * second_[k] + second_[kp]) / 6.0;
-  const double c = 0.5 * second_[k];
-  const double d = (second_[kp] - second_[k]) / (6.0 * h);
-  return b + t * (2.0 * c + 3.0 * d * t);
+  const Segment g = SegmentAt(s);
+  return g.b + g.t * (2.0 * g.c + 3.0 * g.d * g.t);
 }
 
 double PeriodicCubicSpline::SecondDerivative(double s) const {
-  double t;
-  const int k = Locate(s, &t);
-  const int n = size();
-  const int kp = (k + 1) % n;
-  const double h = (k + 1 < n ? knots_[k + 1] : period_) - knots_[k];
-  return second_[k] + (second_[kp] - second_[k]) * t / h;
+  const Segment g = SegmentAt(s);
+  return 2.0 * g.c + 6.0 * g.d * g.t;
 }
 
 double PeriodicCubicSpline::DerivativeAtKnot(int k) const {

@@ -35,6 +35,11 @@ class PeriodicCubicSpline {
   int Locate(double s, double* t) const;
 
  private:
+  // Local cubic a + b t + c t^2 + d t^3 of the segment holding s, with t = s - s_k.
+  struct Segment {
+    double a, b, c, d, t;
+  };
+  Segment SegmentAt(double s) const;
   double Wrap(double s) const;
   std::vector<double> knots_;
   std::vector<double> values_;
