@@ -106,7 +106,18 @@ void InterfaceClassification::Update(const Grid2D& grid, const ClosedCurve& curv
     band_d_.push_back(d);
     band_kappa_.push_back(c.curvature);
   }
-  // 3. Sides: sign of d in the band, row scan elsewhere.
+  // 3. Sides: sign of d in the band, row scan elsewhere. Points outside the markers' bounding
+  // box grown by a chord length (more than the spline's bulge beyond its polygon) are outside.
+  double max_chord = 0.0;
+  for (int k = 0; k < m; ++k) {
+    max_chord =
+        std::max(max_chord, (curve.markers().col((k + 1) % m) - curve.markers().col(k)).norm());
+  }
+  const Eigen::Vector2d box_lo = curve.markers().rowwise().minCoeff().array() - max_chord;
+  const Eigen::Vector2d box_hi = curve.markers().rowwise().maxCoeff().array() + max_chord;
+  auto inside_box = [&](double x, double y) {
+    return x > box_lo.x() && x < box_hi.x() && y > box_lo.y() && y < box_hi.y();
+  };
   for (int j = 0; j < grid.ny; ++j) {
     int current = 0;
     for (int i = 0; i < grid.nx; ++i) {
@@ -115,7 +126,8 @@ void InterfaceClassification::Update(const Grid2D& grid, const ClosedCurve& curv
       if (slot >= 0) {
         current = band_d_[slot] < 0.0 ? -1 : 1;
       } else if (current == 0) {
-        current = curve.Contains(Eigen::Vector2d(grid.x(i), grid.y(j))) ? -1 : 1;
+        const double x = grid.x(i), y = grid.y(j);
+        current = inside_box(x, y) && curve.Contains(Eigen::Vector2d(x, y)) ? -1 : 1;
       }
       side_[idx] = static_cast<std::int8_t>(current);
     }
