@@ -7,7 +7,7 @@
 // a viscosity field). The bound is bandwidth / 280 B.
 //
 // usage: lbm_bench [--sizes 256,321,512,1024,1281] [--threads 1,2] [--seconds 0.5] [--repeats 3]
-//                  [--forcing split|guo] [--viscosity-field]
+//                  [--forcing split|guo] [--viscosity-field] [--stores auto|cached|streaming]
 #include <omp.h>
 
 #include <algorithm>
@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   int repeats = 3;
   ehd::ForcingScheme forcing = ehd::ForcingScheme::kSplitMomentum;
   bool viscosity_field = false;
+  ehd::PopulationStores stores = ehd::PopulationStores::kAuto;
   try {
     for (int k = 1; k < argc; ++k) {
       const std::string arg = argv[k];
@@ -84,6 +85,17 @@ int main(int argc, char** argv) {
         const std::string v = value();
         if (v != "split" && v != "guo") throw std::invalid_argument("--forcing split|guo");
         forcing = v == "guo" ? ehd::ForcingScheme::kGuo : ehd::ForcingScheme::kSplitMomentum;
+      } else if (arg == "--stores") {
+        const std::string v = value();
+        if (v == "auto") {
+          stores = ehd::PopulationStores::kAuto;
+        } else if (v == "cached") {
+          stores = ehd::PopulationStores::kCached;
+        } else if (v == "streaming") {
+          stores = ehd::PopulationStores::kStreaming;
+        } else {
+          throw std::invalid_argument("--stores auto|cached|streaming");
+        }
       } else if (arg == "--viscosity-field") {
         viscosity_field = true;
       } else {
@@ -93,7 +105,8 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::fprintf(stderr,
                  "lbm_bench: %s\nusage: lbm_bench [--sizes 256,321,...] [--threads 1,2] "
-                 "[--seconds 0.5] [--repeats 3] [--forcing split|guo] [--viscosity-field]\n",
+                 "[--seconds 0.5] [--repeats 3] [--forcing split|guo] [--viscosity-field] "
+                 "[--stores auto|cached|streaming]\n",
                  e.what());
     return 2;
   }
@@ -116,6 +129,7 @@ int main(int argc, char** argv) {
       p.boundary = ehd::FluidBoundary::kShearWalls;
       p.forcing = forcing;
       p.threads = t;
+      p.stores = stores;
       ehd::LatticeBoltzmann2D lb(p);
       lb.InitializeShear(1e-3 / n);
       for (std::size_t k = 0; k < lb.force_x().size(); ++k) lb.force_x()[k] = 1e-8 * (k % 7);

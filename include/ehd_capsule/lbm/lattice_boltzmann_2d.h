@@ -27,6 +27,11 @@ namespace ehd {
 
 enum class FluidBoundary { kPeriodic, kShearWalls, kClosedBox };
 
+// How the kernel writes the new populations: through the cache, or with non-temporal (streaming)
+// stores that skip the read-for-ownership of lines that will not be reused before they leave the
+// cache (large grids). kAuto streams when the two population buffers exceed ~24 MB.
+enum class PopulationStores { kAuto, kCached, kStreaming };
+
 struct LbmParameters {
   int nx = 0, ny = 0;
   double viscosity = 1.0 / 6.0;  // lattice kinematic viscosity nu (tau = 3 nu + 1/2 > 1/2)
@@ -39,6 +44,7 @@ struct LbmParameters {
   double s_q = 1.9;         // s_4 = s_6, heat fluxes q_x, q_y (reference value)
   ForcingScheme forcing = ForcingScheme::kSplitMomentum;  // reference eqs. (107)-(108)
   int threads = 0;                                        // 0: OpenMP default
+  PopulationStores stores = PopulationStores::kAuto;      // a speed choice; results identical
 };
 
 class LatticeBoltzmann2D {
@@ -111,6 +117,7 @@ class LatticeBoltzmann2D {
   std::vector<double> s_nu_field_;  // per-node shear rate, used when variable_viscosity_
   bool variable_viscosity_ = false;
   std::vector<double> rho_, ux_, uy_;
+  std::vector<double> stream_scratch_;  // per-thread blocks for streaming stores (made once)
   long step_ = 0;
 };
 
