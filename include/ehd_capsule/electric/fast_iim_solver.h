@@ -56,10 +56,13 @@ struct FastIimOptions {
   // otherwise add modes of G that barely change phi_n^-, i.e. near-null modes of the Schur
   // system for sigma^- > sigma^+.
   double min_control_spacing_h = 1.5;
-  // With an initial guess, GMRES solves for the correction and measures the tolerance against
-  // |b| = |R(0)| of the last cold solve (saves the Poisson solve for R(0)); every
-  // warm_start_refresh-th warm solve is a cold one, which refreshes |b|. 0: always cold.
-  int warm_start_refresh = 20;
+  // 0 (default): the tolerance is always relative to |b| = |R(0)| of the current problem (one
+  // Poisson solve), and an initial guess only shortens GMRES; the result depends only on
+  // (curve, problem, guess), so a checkpoint of G restarts bit for bit. > 0: with a guess,
+  // GMRES solves for the correction against |b| of the last cold solve (saves that Poisson
+  // solve); every warm_start_refresh-th warm solve is cold again. That |b| is solver state, so
+  // results then depend on the solve history (not restartable bit for bit from G alone).
+  int warm_start_refresh = 0;
 };
 
 class FastIimSolver {
@@ -87,7 +90,10 @@ class FastIimSolver {
   const NormalDerivativeFit& fit() const { return fit_; }
   const Grid2D& grid() const { return poisson_.grid(); }
   const FastIimOptions& options() const { return options_; }
-  void set_options(const FastIimOptions& options) { options_ = options; }
+  void set_options(const FastIimOptions& options) {
+    options_ = options;
+    ResetWarmStart();
+  }
   // Integral of f^-/sigma^- over Omega^- (cut-cell quadrature) of the last Solve().
   double interior_flux() const { return interior_flux_; }
   // Forget |b| of the last cold solve (call when the data change abruptly, e.g. a new applied

@@ -45,6 +45,9 @@ class LeakyDielectricSolver {
   const std::vector<double>& jump_normal_derivative() const { return g_; }
   void set_jump_normal_derivative(const std::vector<double>& g) { g_ = g; }
 
+  // Fast IIM options (fit radius, control spacing, warm-start mode; see fast_iim_solver.h).
+  void SetIimOptions(const FastIimOptions& options) { iim_.set_options(options); }
+
   const Grid2D& grid() const { return iim_.grid(); }
   const FastIimSolver& iim() const { return iim_; }
 
