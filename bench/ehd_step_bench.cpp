@@ -1,0 +1,183 @@
+// Where the time of one coupled EHD step goes (song2019 sec. 3.6, the step of
+// coupling/simulation.cpp): the same five stages assembled from the component libraries, each
+// timed with steady_clock over S steps after W warm-up steps:
+//   electric  LeakyDielectricSolver::Solve (fast IIM + GMRES, warm-started) and F_E
+//   membrane  MembraneModel::ComputeForce and the arc elements dl
+//   spread    F dl to the grid (eq. (106))
+//   lbm       one D2Q9 MRT step
+//   interp    u^{n+1} at the markers (eq. (104)), forward Euler move, curve update, diagnostics
+// It then times ehd::Simulation::Step itself with the field off (Ca_E = 0, no solve) and on, and
+// with numerics.electric_every = 1, 2, 5, 10.
+//
+// usage: ehd_step_bench [SCENE] [--steps S] [--warmup W] [--set key=value ...]
+//   (default shear_field, S = 2000, W = 500; run with OMP_NUM_THREADS=1 on a shared machine)
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "ehd_capsule/coupling/simulation.h"
+#include "ehd_capsule/diagnostics/shape_diagnostics.h"
+#include "ehd_capsule/electric/leaky_dielectric_solver.h"
+#include "ehd_capsule/geometry/initial_shapes.h"
+#include "ehd_capsule/ib/immersed_boundary.h"
+#include "ehd_capsule/ib/marker_update.h"
+#include "ehd_capsule/lbm/lattice_boltzmann_2d.h"
+#include "ehd_capsule/membrane/membrane_model.h"
+#include "ehd_capsule/scene/scene.h"
+#include "ehd_capsule/scene/units.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Ms(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// ms per Simulation::Step over `steps` steps after `warmup`.
+double SimulationMsPerStep(const ehd::Scene& scene, long warmup, long steps, double* gmres) {
+  ehd::Simulation sim(scene);
+  for (long i = 0; i < warmup; ++i) sim.Step();
+  long iterations = 0;
+  const auto t0 = Clock::now();
+  for (long i = 0; i < steps; ++i) {
+    sim.Step();
+    iterations += sim.state().gmres_iterations;
+  }
+  const double ms = Ms(t0, Clock::now()) / steps;
+  if (gmres) *gmres = static_cast<double>(iterations) / steps;
+  return ms;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string scene_name = "shear_field";
+  std::vector<std::string> overrides;
+  long steps = 2000, warmup = 500;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--steps" && i + 1 < argc) {
+      steps = std::atol(argv[++i]);
+    } else if (a == "--warmup" && i + 1 < argc) {
+      warmup = std::atol(argv[++i]);
+    } else if (a == "--set" && i + 1 < argc) {
+      overrides.push_back(argv[++i]);
+    } else if (!a.empty() && a[0] != '-') {
+      scene_name = a;
+    } else {
+      std::fprintf(stderr, "usage: ehd_step_bench [SCENE] [--steps S] [--warmup W] [--set k=v]\n");
+      return 2;
+    }
+  }
+  if (steps < 1 || warmup < 0) {
+    std::fprintf(stderr, "ehd_step_bench: --steps must be >= 1 and --warmup >= 0\n");
+    return 2;
+  }
+  const ehd::Scene scene = ehd::LoadScene(scene_name, overrides);
+  const ehd::LatticeUnits units = ehd::DeriveLatticeUnits(scene);
+  std::printf("scene %s: N = %d, M = %d, Ca_E = %g, %ld steps after %ld warm-up\n",
+              scene.name.c_str(), scene.N, scene.M, scene.Ca_E, steps, warmup);
+
+  // --- Stage timing on the assembled components (forward Euler, field solved every step).
+  ehd::LbmParameters lp;
+  lp.nx = lp.ny = scene.N;
+  lp.viscosity = units.viscosity;
+  lp.threads = scene.numerics.threads;
+  lp.boundary =
+      scene.has_shear() ? ehd::FluidBoundary::kShearWalls : ehd::FluidBoundary::kClosedBox;
+  ehd::LatticeBoltzmann2D fluid(lp);
+  const ehd::Grid2D grid = fluid.grid();
+  if (scene.has_shear())
+    fluid.InitializeShear(units.shear_rate);
+  else
+    fluid.InitializeAtRest();
+  ehd::ImmersedBoundary ib(grid, scene.has_shear(), false);
+  Eigen::Matrix2Xd X = ehd::CircleMarkers(scene.M, units.radius);
+  ehd::ClosedCurve curve(X);
+  ehd::MembraneParameters mp;
+  if (scene.membrane == ehd::MembraneKind::kDrop) {
+    mp.tension = units.tension;
+  } else {
+    mp.shear_modulus = units.tension;
+    mp.membrane_viscosity = units.membrane_viscosity;
+    mp.bending_modulus = units.bending_modulus;
+  }
+  ehd::MembraneModel membrane(mp, curve);
+  ehd::LeakyDielectricSolver electric(grid, units.sigma_minus, units.sigma_plus, units.eps_minus,
+                                      units.eps_plus);
+  electric.SetAppliedField(units.field);
+  Eigen::Matrix2Xd density, force(2, scene.M), U;
+  std::vector<double> dl;
+  double t_electric = 0, t_membrane = 0, t_spread = 0, t_lbm = 0, t_interp = 0;
+  long iterations = 0;
+  for (long n = 0; n < warmup + steps; ++n) {
+    const bool timed = n >= warmup;
+    const auto t0 = Clock::now();
+    const ehd::InterfaceSolveReport& report = electric.Solve(curve);
+    const Eigen::Matrix2Xd& fe = electric.force();
+    const auto t1 = Clock::now();
+    membrane.ComputeForce(curve, 1.0, density);
+    ehd::MarkerArcElements(curve, dl);
+    for (int k = 0; k < scene.M; ++k) force.col(k) = (density.col(k) + fe.col(k)) * dl[k];
+    const auto t2 = Clock::now();
+    fluid.ClearForce();
+    ib.Spread(X, force, fluid.force_x(), fluid.force_y());
+    const auto t3 = Clock::now();
+    fluid.Step();
+    const auto t4 = Clock::now();
+    ib.Interpolate(fluid.ux(), fluid.uy(), X, U);
+    X += U;
+    if (scene.has_shear()) ehd::WrapCurveIntoDomain(grid, X);
+    curve.Update(X);
+    const ehd::ShapeDiagnostics d = ehd::MeasureShape(curve);
+    const auto t5 = Clock::now();
+    if (timed) {
+      t_electric += Ms(t0, t1);
+      t_membrane += Ms(t1, t2);
+      t_spread += Ms(t2, t3);
+      t_lbm += Ms(t3, t4);
+      t_interp += Ms(t4, t5);
+      iterations += report.iterations;
+    }
+    if (n + 1 == warmup + steps) std::printf("final D_xy = %.5f\n", d.dxy);
+  }
+  const double total = t_electric + t_membrane + t_spread + t_lbm + t_interp;
+  std::printf(
+      "\nstage timing (ms per step, field solved every step, warm-started GMRES: %.2f "
+      "iterations per step):\n",
+      static_cast<double>(iterations) / steps);
+  std::printf("%-10s %10s %8s\n", "stage", "ms/step", "share");
+  const struct {
+    const char* name;
+    double ms;
+  } rows[] = {{"electric", t_electric},
+              {"membrane", t_membrane},
+              {"spread", t_spread},
+              {"lbm", t_lbm},
+              {"interp", t_interp}};
+  for (const auto& r : rows)
+    std::printf("%-10s %10.4f %7.1f%%\n", r.name, r.ms / steps, 100.0 * r.ms / total);
+  std::printf("%-10s %10.4f\n", "total", total / steps);
+
+  // --- The real Simulation::Step, field off and on, and with sub-stepping.
+  std::printf("\nehd::Simulation::Step (ms per step):\n%-32s %10s %12s %8s\n", "configuration",
+              "ms/step", "GMRES/step", "ratio");
+  std::vector<std::string> off = overrides;
+  off.push_back("Ca_E=0");
+  const double ms_off =
+      SimulationMsPerStep(ehd::LoadScene(scene_name, off), warmup, steps, nullptr);
+  std::printf("%-32s %10.4f %12s %8.2f\n", "Ca_E = 0 (no solve)", ms_off, "-", 1.0);
+  for (int every : {1, 2, 5, 10}) {
+    std::vector<std::string> on = overrides;
+    on.push_back("numerics.electric_every=" + std::to_string(every));
+    double gmres = 0;
+    const double ms = SimulationMsPerStep(ehd::LoadScene(scene_name, on), warmup, steps, &gmres);
+    char label[64];
+    std::snprintf(label, sizeof label, "Ca_E = %g, electric_every = %d", scene.Ca_E, every);
+    std::printf("%-32s %10.4f %12.2f %8.2f\n", label, ms, gmres, ms / ms_off);
+  }
+  return 0;
+}

@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""Drop (song2019 sec. 4.3, Figs. 27-30) and capsule (sec. 5.1, Figs. 31-51) in simple shear
+u = (k y, 0) and a DC field E_inf = (0, -E): Cases A, B, C (sigma_r = 1.75, 3.25, 4.75;
+eps_r = 3.5) over Ca_E.
+
+Expected (sec. 4.3, 5.1): D_xy grows with Ca_E; Case A (oblate in a field alone) tilts toward
+the flow (theta below its Ca_E = 0 value), Cases B and C (prolate) toward the field (theta above
+it, at least initially for C); the time to steady state shortens as Ca_E grows.
+
+Per run: steady D_xy and theta/pi (mean of the last 10% of the run), the time to steady (first
+t after which D_xy stays within 1% of its final value and theta within 0.005 pi), and the
+tank-treading angular velocity omega / k from the slope of the phase of marker 0 about the
+centroid over the last 30% of the run (< 0: clockwise, the sense of the shear vorticity -k);
+the tank-treading period is 2 pi / |omega| (units of 1/k).
+
+Regenerates the tables of docs/validation_ehd.md section 2:
+    python3 scripts/validate_ehd_shear.py [--work DIR] [--jobs 2]
+"""
+import math
+
+import validate_ehd_common as common
+
+CASES = {"A": 1.75, "B": 3.25, "C": 4.75}
+EPS_R = 3.5
+
+
+def analyse(rows):
+    t_end = rows[-1]["t"]
+    tail = [r for r in rows if r["t"] >= 0.9 * t_end]
+    d = sum(r["dxy"] for r in tail) / len(tail)
+    theta = sum(r["inclination"] for r in tail) / len(tail)
+    t_steady = float("nan")
+    for r in reversed(rows):
+        if abs(r["dxy"] - d) > 0.01 * abs(d) or abs(r["inclination"] - theta) > 0.005 * math.pi:
+            t_steady = r["t"]
+            break
+    # A steady time in the last 10% of the run means it has not settled: report it as such.
+    settled = t_steady < 0.9 * t_end
+    fit = [r for r in rows if r["t"] >= 0.7 * t_end]
+    n = len(fit)
+    mt = sum(r["t"] for r in fit) / n
+    mp = sum(r["tt_phase"] for r in fit) / n
+    slope = sum((r["t"] - mt) * (r["tt_phase"] - mp) for r in fit) / sum(
+        (r["t"] - mt) ** 2 for r in fit)
+    drift = max(abs(r["dxy"] - d) for r in tail)
+    return d, theta, t_steady, settled, slope, drift
+
+
+def main():
+    p = common.parser(__doc__.splitlines()[0])
+    p.add_argument("--ca-e", default="0,0.1,0.2,0.3")
+    p.add_argument("--drop-until", type=float, default=10.0)
+    p.add_argument("--capsule-until", type=float, default=8.0)
+    p.add_argument("--n", type=int, default=64)
+    p.add_argument("--only", choices=["drop", "capsule"], default=None)
+    args = p.parse_args()
+    ca_list = [float(v) for v in args.ca_e.split(",")]
+    runs = {}
+    for kind, scene, until in (("drop", "drop_shear_field", args.drop_until),
+                               ("capsule", "shear_field", args.capsule_until)):
+        if args.only and kind != args.only:
+            continue
+        for case, sigma in CASES.items():
+            for ca in ca_list:
+                k = "%s_%s_CaE%g_N%d" % (kind, case, ca, args.n)
+                runs[(kind, case, ca)] = common.Run(
+                    k, scene, ["sigma_r=%g" % sigma, "eps_r=%g" % EPS_R, "Ca_E=%g" % ca,
+                               "N=%d" % args.n, "M=%d" % args.n],
+                    ["--until", str(until)], csv_every=20)
+    print("load average before: %s" % " ".join(common.load_average()))
+    common.run_all(args, list(runs.values()))
+    print("load average after: %s\n" % " ".join(common.load_average()))
+
+    for kind in ("drop", "capsule"):
+        keys = [k for k in runs if k[0] == kind]
+        if not keys:
+            continue
+        print("\n%s in shear and field (%s), N = M = %d:\n" % (
+            kind, "drop_shear_field: Ca = Re = 0.3" if kind == "drop" else
+            "shear_field: Ca = 0.04, Re = 0.05", args.n))
+        header = ["case", "Ca_E", "D_xy", "theta/pi", "tilt vs Ca_E=0", "t steady (1/k)",
+                  "omega_tt/k", "tt period (1/k)", "steps", "ms/step"]
+        body = []
+        for case in CASES:
+            base = None
+            for ca in ca_list:
+                r = runs[(kind, case, ca)]
+                if r.error:
+                    body.append([case, ca, "failed: " + r.error] + [""] * 7)
+                    continue
+                d, theta, ts, settled, slope, _ = analyse(r.rows)
+                if ca == 0:
+                    base = theta
+                tilt = "-" if base is None or ca == 0 else (
+                    "toward field (+%.4f)" % ((theta - base) / math.pi) if theta > base else
+                    "toward flow (%.4f)" % ((theta - base) / math.pi))
+                body.append([case, ca, "%.5f" % d, "%.4f" % (theta / math.pi), tilt,
+                             ("%.2f" % ts) if settled else "> %.1f (not settled)" % (
+                                 0.9 * r.rows[-1]["t"]),
+                             "%+.4f" % slope, "%.2f" % (2 * math.pi / abs(slope)) if slope else "-",
+                             r.steps, "%.3f" % r.ms_per_step])
+        print(common.table(header, body))
+
+
+if __name__ == "__main__":
+    main()
