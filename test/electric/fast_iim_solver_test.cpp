@@ -307,12 +307,6 @@ TEST(LeakyDielectricSolver, NeutralDropInUniformFieldFeelsNoNetForce) {
   EXPECT_NEAR(solver.field_y()[g.index(32, 2)], -1.0, 0.12);
 }
 
-}  // namespace
-}  // namespace ehd
-
-namespace ehd {
-namespace {
-
 TEST(LeakyDielectricSolver, DenseMarkersAndHighConductivityRatioStillConvergeQuickly) {
   // Markers 4x denser than the grid (as an immersed boundary may use) with sigma^-/sigma^+ =
   // 100: GMRES works on control markers >= 1.5 h apart, so it needs few iterations; the field
@@ -330,12 +324,6 @@ TEST(LeakyDielectricSolver, DenseMarkersAndHighConductivityRatioStillConvergeQui
     EXPECT_NEAR(solver.normal_field_minus()[k], -amp * std::sin(2 * M_PI * k / m), 0.15 * amp);
   }
 }
-
-}  // namespace
-}  // namespace ehd
-
-namespace ehd {
-namespace {
 
 TEST(FastIimSolver, CorrectionTermsMakeTheLocalTruncationErrorSmallAtIrregularPoints) {
   // Example 4 (phi^- = e^x cos y, phi^+ = 0, sigma = 1, so G = v exactly): apply the 5-point
@@ -373,12 +361,6 @@ TEST(FastIimSolver, CorrectionTermsMakeTheLocalTruncationErrorSmallAtIrregularPo
     previous = with;
   }
 }
-
-}  // namespace
-}  // namespace ehd
-
-namespace ehd {
-namespace {
 
 TEST(FastIimSolver, ClockwiseMarkersGiveTheSameSolution) {
   // ClosedCurve orients normal and tangent by geometry, not by marker order; the IIM must be
