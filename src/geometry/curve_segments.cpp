@@ -3,17 +3,9 @@
 
 #include <cmath>
 
+#include "ehd_capsule/geometry/gauss_legendre.h"
+
 namespace ehd {
-namespace {
-
-// 5-point Gauss-Legendre nodes and weights on [0, 1] (as in closed_curve.cpp).
-constexpr double kGaussNode[5] = {0.046910077030668, 0.230765344947158, 0.5, 0.769234655052842,
-                                  0.953089922969332};
-constexpr double kGaussWeight[5] = {0.118463442528095, 0.239314335249683, 0.284444444444444,
-                                    0.239314335249683, 0.118463442528095};
-
-}  // namespace
-
 void CurveSegments::Update(const ClosedCurve& c) {
   const int m = c.size();
   h_.resize(m);
