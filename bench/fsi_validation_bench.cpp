@@ -24,6 +24,7 @@
 //   fsi_validation_bench biconcave [--grids 64]
 //   fsi_validation_bench viscosity [--grids 64,128]
 // Common: --m-per-n R (markers per cell across, default 1), --set key=value (extra overrides).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -46,6 +47,7 @@ using ehd::Simulation;
 struct RunResult {
   double dxy = NAN, theta = NAN, time = 0, t2 = NAN, f = NAN, f_ks = NAN;
   double max_drift = 0, wall = 0;
+  double stretch_mean = NAN, stretch_min = NAN, stretch_max = NAN;  // lambda at the end
   long steps = 0;
   bool steady = false, tumbling = false, crossed = false;
   int flips = 0;
@@ -100,6 +102,7 @@ RunResult Run(const std::string& scene, std::vector<std::string> overrides, doub
   std::vector<double> ts, ds;
   try {
     Simulation sim(ehd::LoadScene(scene, overrides));
+    const ehd::ClosedCurve reference(sim.state().markers);
     ehd::SteadyStateMonitor monitor(tol);
     ehd::TankTreadingTracker tracker(0);
     const double k = sim.units().shear_rate;
@@ -133,6 +136,19 @@ RunResult Run(const std::string& scene, std::vector<std::string> overrides, doub
     r.tumbling = tracker.tumbling();
     r.flips = tracker.flips();
     r.crossed = r.crossed || SelfIntersects(s.markers);
+    {
+      const ehd::ClosedCurve c(s.markers);
+      double sum = 0.0;
+      r.stretch_min = 1e300;
+      r.stretch_max = 0.0;
+      for (int k = 0; k < c.size(); ++k) {
+        const double lambda = c.SegmentArcLength(k) / reference.SegmentArcLength(k);
+        sum += lambda;
+        r.stretch_min = std::min(r.stretch_min, lambda);
+        r.stretch_max = std::max(r.stretch_max, lambda);
+      }
+      r.stretch_mean = sum / c.size();
+    }
     // Time to steady: last sample outside 2% of the final D.
     r.t2 = 0.0;
     for (std::size_t i = 0; i < ts.size(); ++i) {
@@ -235,11 +251,15 @@ void SweepCa(const Options& o) {
     for (const auto& r : all[i]) ok = ok && r.error.empty();
     if (ok) PrintConvergence(label, grids, all[i]);
   }
-  std::printf("\nsmall-Ca law on the finest grid: D^3 / Ca and local exponent d ln D / d ln Ca\n");
+  std::printf(
+      "\nsmall-Ca law on the finest grid: D^3 / Ca, local exponent d ln D / d ln Ca, membrane\n"
+      "stretch at the end (mean, min, max) and (mean - 1) / (3 D^2 / 4) (perimeter excess of the\n"
+      "ellipse of the same area)\n");
   for (std::size_t i = 0; i < all.size(); ++i) {
     const RunResult& r = all[i].back();
-    std::printf("  Ca = %-7g D = %.5f  D^3/Ca = %.3f", o.ca[i], r.dxy,
-                r.dxy * r.dxy * r.dxy / o.ca[i]);
+    std::printf("  Ca = %-7g D = %.5f  D^3/Ca = %.3f  lambda %.4f [%.4f, %.4f] ratio %.3f", o.ca[i],
+                r.dxy, r.dxy * r.dxy * r.dxy / o.ca[i], r.stretch_mean, r.stretch_min,
+                r.stretch_max, (r.stretch_mean - 1.0) / (0.75 * r.dxy * r.dxy));
     if (i > 0) {
       const RunResult& q = all[i - 1].back();
       std::printf("  exponent %.3f", std::log(r.dxy / q.dxy) / std::log(o.ca[i] / o.ca[i - 1]));
