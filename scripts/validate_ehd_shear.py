@@ -11,7 +11,8 @@ Per run: steady D_xy and theta/pi (mean of the last 10% of the run), the time to
 t after which D_xy stays within 1% of its final value and theta within 0.005 pi), and the
 tank-treading angular velocity omega / k from the slope of the phase of marker 0 about the
 centroid over the last 30% of the run (< 0: clockwise, the sense of the shear vorticity -k);
-the tank-treading period is 2 pi / |omega| (units of 1/k).
+the tank-treading period T = 2 pi / |omega| and the normalised frequency of sec. 5.1,
+f = 4 pi / (k T) = 2 |omega| / k.
 
 Regenerates the tables of docs/validation_ehd.md section 2:
     python3 scripts/validate_ehd_shear.py [--work DIR] [--jobs 2]
@@ -79,14 +80,14 @@ def main():
             kind, "drop_shear_field: Ca = Re = 0.3" if kind == "drop" else
             "shear_field: Ca = 0.04, Re = 0.05", args.n))
         header = ["case", "Ca_E", "D_xy", "theta/pi", "tilt vs Ca_E=0", "t steady (1/k)",
-                  "omega_tt/k", "tt period (1/k)", "steps", "ms/step"]
+                  "omega_tt/k", "tt period kT", "f = 4pi/(kT)", "steps", "ms/step"]
         body = []
         for case in CASES:
             base = None
             for ca in ca_list:
                 r = runs[(kind, case, ca)]
                 if r.error:
-                    body.append([case, ca, "failed: " + r.error] + [""] * 7)
+                    body.append([case, ca, "failed: " + r.error] + [""] * 8)
                     continue
                 d, theta, ts, settled, slope, _ = analyse(r.rows)
                 if ca == 0:
@@ -98,6 +99,7 @@ def main():
                              ("%.2f" % ts) if settled else "> %.1f (not settled)" % (
                                  0.9 * r.rows[-1]["t"]),
                              "%+.4f" % slope, "%.2f" % (2 * math.pi / abs(slope)) if slope else "-",
+                             "%.4f" % (2 * abs(slope)),
                              r.steps, "%.3f" % r.ms_per_step])
         print(common.table(header, body))
 
