@@ -6,12 +6,17 @@
 //   spread    F dl to the grid (eq. (106))
 //   lbm       one D2Q9 MRT step
 //   interp    u^{n+1} at the markers (eq. (104)), forward Euler move, curve update, diagnostics
-// It then times ehd::Simulation::Step itself with the field off (Ca_E = 0, no solve) and on, and
-// with numerics.electric_every = 1, 2, 5, 10.
+// and, inside the electric solve, on the final curve: the interface classification (sides,
+// band, closest points), the WLS fit set-up and one fast Poisson solve (a Solve makes
+// iterations + 2 of them: b = R(0), one per GMRES iteration, the final potential).
+// Times are process CPU time (CLOCK_PROCESS_CPUTIME_ID; run with OMP_NUM_THREADS=1): on a shared
+// machine wall time mostly measures the other users' load. It then times ehd::Simulation::Step with
+// the field off (Ca_E = 0, no solve) and on, and with numerics.electric_every = 1, 2, 5, 10.
 //
 // usage: ehd_step_bench [SCENE] [--steps S] [--warmup W] [--set key=value ...]
 //   (default shear_field, S = 2000, W = 500; run with OMP_NUM_THREADS=1 on a shared machine)
-#include <chrono>
+#include <time.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -19,7 +24,10 @@
 
 #include "ehd_capsule/coupling/simulation.h"
 #include "ehd_capsule/diagnostics/shape_diagnostics.h"
+#include "ehd_capsule/electric/fast_poisson_solver.h"
+#include "ehd_capsule/electric/interface_classification.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
+#include "ehd_capsule/electric/normal_derivative_fit.h"
 #include "ehd_capsule/geometry/initial_shapes.h"
 #include "ehd_capsule/ib/immersed_boundary.h"
 #include "ehd_capsule/ib/marker_update.h"
@@ -30,10 +38,11 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double Ms(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
+// Process CPU time in ms.
+double CpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
 }
 
 // ms per Simulation::Step over `steps` steps after `warmup`.
@@ -41,12 +50,12 @@ double SimulationMsPerStep(const ehd::Scene& scene, long warmup, long steps, dou
   ehd::Simulation sim(scene);
   for (long i = 0; i < warmup; ++i) sim.Step();
   long iterations = 0;
-  const auto t0 = Clock::now();
+  const double t0 = CpuMs();
   for (long i = 0; i < steps; ++i) {
     sim.Step();
     iterations += sim.state().gmres_iterations;
   }
-  const double ms = Ms(t0, Clock::now()) / steps;
+  const double ms = (CpuMs() - t0) / steps;
   if (gmres) *gmres = static_cast<double>(iterations) / steps;
   return ms;
 }
@@ -115,38 +124,38 @@ int main(int argc, char** argv) {
   long iterations = 0;
   for (long n = 0; n < warmup + steps; ++n) {
     const bool timed = n >= warmup;
-    const auto t0 = Clock::now();
+    const double t0 = CpuMs();
     const ehd::InterfaceSolveReport& report = electric.Solve(curve);
     const Eigen::Matrix2Xd& fe = electric.force();
-    const auto t1 = Clock::now();
+    const double t1 = CpuMs();
     membrane.ComputeForce(curve, 1.0, density);
     ehd::MarkerArcElements(curve, dl);
     for (int k = 0; k < scene.M; ++k) force.col(k) = (density.col(k) + fe.col(k)) * dl[k];
-    const auto t2 = Clock::now();
+    const double t2 = CpuMs();
     fluid.ClearForce();
     ib.Spread(X, force, fluid.force_x(), fluid.force_y());
-    const auto t3 = Clock::now();
+    const double t3 = CpuMs();
     fluid.Step();
-    const auto t4 = Clock::now();
+    const double t4 = CpuMs();
     ib.Interpolate(fluid.ux(), fluid.uy(), X, U);
     X += U;
     if (scene.has_shear()) ehd::WrapCurveIntoDomain(grid, X);
     curve.Update(X);
     const ehd::ShapeDiagnostics d = ehd::MeasureShape(curve);
-    const auto t5 = Clock::now();
+    const double t5 = CpuMs();
     if (timed) {
-      t_electric += Ms(t0, t1);
-      t_membrane += Ms(t1, t2);
-      t_spread += Ms(t2, t3);
-      t_lbm += Ms(t3, t4);
-      t_interp += Ms(t4, t5);
+      t_electric += (t1 - t0);
+      t_membrane += (t2 - t1);
+      t_spread += (t3 - t2);
+      t_lbm += (t4 - t3);
+      t_interp += (t5 - t4);
       iterations += report.iterations;
     }
     if (n + 1 == warmup + steps) std::printf("final D_xy = %.5f\n", d.dxy);
   }
   const double total = t_electric + t_membrane + t_spread + t_lbm + t_interp;
   std::printf(
-      "\nstage timing (ms per step, field solved every step, warm-started GMRES: %.2f "
+      "\nstage timing (CPU ms per step, field solved every step, warm-started GMRES: %.2f "
       "iterations per step):\n",
       static_cast<double>(iterations) / steps);
   std::printf("%-10s %10s %8s\n", "stage", "ms/step", "share");
@@ -162,8 +171,47 @@ int main(int argc, char** argv) {
     std::printf("%-10s %10.4f %7.1f%%\n", r.name, r.ms / steps, 100.0 * r.ms / total);
   std::printf("%-10s %10.4f\n", "total", total / steps);
 
+  // --- Inside the electric solve, on the final curve (defaults of FastIimOptions).
+  {
+    const int repeats = 200;
+    ehd::InterfaceClassification classes;
+    ehd::NormalDerivativeFit fit;
+    ehd::FastPoissonSolver poisson(
+        grid, ehd::PoissonBoundaries{ehd::BoundaryKind::kNeumann, ehd::BoundaryKind::kNeumann,
+                                     ehd::BoundaryKind::kDirichlet, ehd::BoundaryKind::kDirichlet});
+    std::vector<double> rhs(grid.size(), 1e-3), phi(grid.size());
+    double t_class = 0, t_fit = 0, t_poisson = 0, t_solve = 0;
+    int iters = 0;
+    for (int r = 0; r < repeats; ++r) {
+      const double a = CpuMs();
+      classes.Update(grid, curve, 3.5 * grid.h);
+      const double b = CpuMs();
+      fit.Update(curve, classes, 3.0 * grid.h);
+      const double c = CpuMs();
+      poisson.Solve(rhs, phi);
+      const double d = CpuMs();
+      iters += electric.Solve(curve).iterations;
+      const double e = CpuMs();
+      t_class += b - a;
+      t_fit += c - b;
+      t_poisson += d - c;
+      t_solve += e - d;
+    }
+    const double per_solve = t_solve / repeats;
+    const double poisson_count = static_cast<double>(iters) / repeats + 2.0;
+    std::printf("\ninside one electric Solve (same curve, warm start, CPU ms; %d band points):\n",
+                classes.band_size());
+    std::printf("%-34s %10.4f\n", "LeakyDielectricSolver::Solve", per_solve);
+    std::printf("%-34s %10.4f\n", "  interface classification", t_class / repeats);
+    std::printf("%-34s %10.4f\n", "  WLS fit set-up", t_fit / repeats);
+    std::printf("  fast Poisson solves: %.2f x %.4f = %.4f\n", poisson_count, t_poisson / repeats,
+                poisson_count * t_poisson / repeats);
+    std::printf("%-34s %10.4f\n", "  rest (band J set-up, field, F_E)",
+                per_solve - (t_class + t_fit) / repeats - poisson_count * t_poisson / repeats);
+  }
+
   // --- The real Simulation::Step, field off and on, and with sub-stepping.
-  std::printf("\nehd::Simulation::Step (ms per step):\n%-32s %10s %12s %8s\n", "configuration",
+  std::printf("\nehd::Simulation::Step (CPU ms per step):\n%-32s %10s %12s %8s\n", "configuration",
               "ms/step", "GMRES/step", "ratio");
   std::vector<std::string> off = overrides;
   off.push_back("Ca_E=0");

@@ -32,6 +32,7 @@ class Run:
         self.key, self.scene, self.sets, self.stop = key, scene, list(sets), list(stop)
         self.vtk_every, self.csv_every = vtk_every, csv_every
         self.rows, self.log, self.wall, self.steps, self.ms_per_step = [], "", float("nan"), 0, 0
+        self.cpu = float("nan")  # process CPU s (user + sys), nan for runs logged without it
         self.error, self.steady = "", False
         self.vtk_dir = None
 
@@ -61,13 +62,19 @@ class Run:
         if not (done or failed):
             env = dict(os.environ, OMP_NUM_THREADS="1")
             start = time.time()
-            p = subprocess.run(self.command(args), cwd=REPO, env=env, capture_output=True,
-                               text=True)
-            wall = time.time() - start
-            with open(log, "w") as f:
-                f.write("$ " + " ".join(self.command(args)) + "\n")
-                f.write(p.stdout + p.stderr + "\nprocess wall %.3f s, exit %d\n" % (wall,
-                                                                                   p.returncode))
+            with open(log + ".tmp", "w") as out:
+                out.write("$ " + " ".join(self.command(args)) + "\n")
+                out.flush()
+                p = subprocess.Popen(self.command(args), cwd=REPO, env=env, stdout=out,
+                                     stderr=subprocess.STDOUT)
+                # CPU time of this child alone (user + sys): on a shared machine the wall time
+                # depends on the other engineers' load, the CPU time much less.
+                _, status, usage = os.wait4(p.pid, 0)
+                wall = time.time() - start
+                out.write("\nprocess wall %.3f s, process cpu %.3f s, exit %d, load %s\n" % (
+                    wall, usage.ru_utime + usage.ru_stime, os.waitstatus_to_exitcode(status),
+                    " ".join(load_average())))
+            os.replace(log + ".tmp", log)
         self.parse(args)
         return self
 
@@ -77,6 +84,9 @@ class Run:
         if m:
             self.steps, self.wall, self.ms_per_step = int(m.group(1)), float(m.group(2)), float(
                 m.group(3))
+        m = re.search(r"process cpu ([0-9.]+) s", self.log)
+        if m:
+            self.cpu = float(m.group(1))
         m = re.search(r"simulation stopped: (.*)", self.log)
         if m:
             self.error = m.group(1).strip()
@@ -94,8 +104,8 @@ def run_all(args, runs):
         futures = [pool.submit(r.execute, args) for r in runs]
         for f in concurrent.futures.as_completed(futures):
             r = f.result()
-            print("  done %-40s %8d steps %8.1f s %s" % (r.key, r.steps, r.wall, r.error),
-                  flush=True)
+            print("  done %-40s %8d steps %8.1f s wall %8.1f s cpu %s" % (
+                r.key, r.steps, r.wall, r.cpu, r.error), flush=True)
     print("  all runs: %.0f s wall" % (time.time() - start), flush=True)
     return runs
 
