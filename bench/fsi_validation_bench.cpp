@@ -11,7 +11,8 @@
 //     to wait a full turn). f_KS = 2 a b / (a^2 + b^2) = (1 - D^2) / (1 + D^2): a fixed ellipse
 //     whose interior keeps the vorticity k of the shear (Keller-Skalak-type estimate at V = 1;
 //     f = 1 for a circle turning at k/2);
-//   tumbling (TankTreadingTracker: the long axis passes the vertical) and flips;
+//   flips: half turns of the long axis through the vertical (TankTreadingTracker), over the
+//     whole run / over its second half (tumbling goes on: late flips > 0);
 //   max |A/A0 - 1| over the run; whether the membrane polygon ever self-intersected (markers
 //     crossing), checked every 0.1/k;
 //   steps and wall seconds.
@@ -50,7 +51,7 @@ struct RunResult {
   double stretch_mean = NAN, stretch_min = NAN, stretch_max = NAN;  // lambda at the end
   long steps = 0;
   bool steady = false, tumbling = false, crossed = false;
-  int flips = 0;
+  int flips = 0, late_flips = 0;  // long-axis half turns: whole run, second half
   std::string error;
 };
 
@@ -108,7 +109,9 @@ RunResult Run(const std::string& scene, std::vector<std::string> overrides, doub
     const double k = sim.units().shear_rate;
     const long check_every = std::max(1L, std::lround(0.1 / (k > 0 ? k : 1.0)));
     const long sample_every = std::max(1L, std::lround(0.01 / (k > 0 ? k : 1.0)));
+    int flips_at_half = -1;
     while (sim.state().time < t_max - 1e-12) {
+      if (flips_at_half < 0 && sim.state().time >= 0.5 * t_max) flips_at_half = tracker.flips();
       sim.Step();
       const auto& s = sim.state();
       r.max_drift = std::max(r.max_drift, std::abs(s.area_drift));
@@ -135,6 +138,7 @@ RunResult Run(const std::string& scene, std::vector<std::string> overrides, doub
     r.f_ks = (1 - r.dxy * r.dxy) / (1 + r.dxy * r.dxy);
     r.tumbling = tracker.tumbling();
     r.flips = tracker.flips();
+    r.late_flips = flips_at_half < 0 ? 0 : r.flips - flips_at_half;
     r.crossed = r.crossed || SelfIntersects(s.markers);
     {
       const ehd::ClosedCurve c(s.markers);
@@ -186,8 +190,7 @@ std::vector<std::string> GridOverrides(const Options& o, int n) {
 
 void PrintHeader() {
   std::printf("%6s %5s %5s %8s %8s %7s %6s %6s %6s %8s %5s %6s %9s %8s\n", "case", "N", "M", "D_xy",
-              "theta/pi", "t", "t_2%", "f", "f_KS", "|dA|max", "cross", "tumble", "steps",
-              "wall s");
+              "theta/pi", "t", "t_2%", "f", "f_KS", "|dA|max", "cross", "flips", "steps", "wall s");
 }
 
 void PrintRow(const std::string& label, int n, int m, const RunResult& r) {
@@ -197,8 +200,9 @@ void PrintRow(const std::string& label, int n, int m, const RunResult& r) {
   }
   std::printf("%6s %5d %5d %8.5f %8.5f %7.3g %6.2f %6.3f %6.3f %8.1e %5s %6s %9ld %8.1f%s\n",
               label.c_str(), n, m, r.dxy, r.theta / M_PI, r.time, r.t2, r.f, r.f_ks, r.max_drift,
-              r.crossed ? "YES" : "no", r.tumbling ? "yes" : "no", r.steps, r.wall,
-              r.steady ? "" : " (not steady)");
+              r.crossed ? "YES" : "no",
+              (std::to_string(r.flips) + "/" + std::to_string(r.late_flips)).c_str(), r.steps,
+              r.wall, r.steady ? "" : " (not steady)");
   std::fflush(stdout);
 }
 
@@ -339,7 +343,7 @@ int main(int argc, char** argv) {
   } else if (o.mode == "biconcave") {
     if (!grids_given) o.grids = {64};
     std::vector<std::pair<std::string, std::vector<std::string>>> cases;
-    for (const char* eb : {"0", "0.005", "0.05"}) {
+    for (const char* eb : {"0", "0.001", "0.005", "0.01", "0.05"}) {
       cases.push_back({std::string("Eb") + eb, {std::string("E_b=") + eb}});
     }
     SweepScene(o, "Biconcave capsule, Ca = 0.0125 (biconcave_shear), fixed run length t_max",

@@ -1,4 +1,5 @@
-// Small-Ca law of a 2D Hookean capsule in shear (no prestress, no bending): D_xy ~ Ca^(1/3).
+// Small-Ca law of a 2D Hookean capsule in shear (no prestress, no bending): D_xy ~ Ca^(1/3);
+// and bending lowers the steady deformation.
 //
 // Why (docs/validation_fsi.md, test/membrane/first_order_response_test.cpp): a 1D Hookean
 // membrane, tau = E_s (lambda - 1), can take the elliptic shape mode of shear with no first-order
@@ -32,14 +33,20 @@ flow: shear
 numerics: {threads: 1}
 )";
 
-double SteadyD(double ca) {
-  Simulation sim(ParseScene(kCapsule, {"Ca=" + std::to_string(ca)}));
+struct Steady {
+  double dxy = 0, inclination = 0;
+};
+
+Steady SteadyShape(double ca, double eb) {
+  Simulation sim(ParseScene(kCapsule, {"Ca=" + std::to_string(ca), "E_b=" + std::to_string(eb)}));
   // The shape relaxes at a rate ~ tau_0 / (mu a) ~ k D^2 / Ca >= k here: t = 6 / k is steady to
   // better than 1% (ehd_sim run with --until-steady on this grid).
   while (sim.state().time < 6.0) sim.Step();
   EXPECT_LT(std::abs(sim.state().area_drift), 0.005);
-  return sim.state().dxy;
+  return {sim.state().dxy, sim.state().inclination};
 }
+
+double SteadyD(double ca) { return SteadyShape(ca, 0.0).dxy; }
 
 TEST(CapsuleSmallCa, DeformationGrowsAsCubeRootOfCa) {
   const double d1 = SteadyD(0.0025), d2 = SteadyD(0.01), d3 = SteadyD(0.04);
@@ -54,6 +61,24 @@ TEST(CapsuleSmallCa, DeformationGrowsAsCubeRootOfCa) {
   // tension of the sliding membrane changes it by O(1)): between 0.7 and 2.5.
   EXPECT_GT(d1 * d1 * d1 / 0.0025, 0.7);
   EXPECT_LT(d1 * d1 * d1 / 0.0025, 2.5);
+}
+
+}  // namespace
+}  // namespace ehd
+
+namespace ehd {
+namespace {
+
+// Bending (song2019 eq. (115)) adds the energy (E_B / 2) oint (kappa - kappa_0)^2 dl to every
+// shape change, including the sliding ellipse mode, so at fixed Ca the steady deformation must
+// fall and the capsule tilt less towards the flow (theta closer to pi/4), Figs. 52-55.
+TEST(CapsuleSmallCa, BendingReducesDeformation) {
+  const Steady soft = SteadyShape(0.04, 0.0), stiff = SteadyShape(0.04, 0.1);
+  std::printf("Ca = 0.04: E_b = 0: D = %.4f theta/pi = %.4f; E_b = 0.1: D = %.4f theta/pi = %.4f\n",
+              soft.dxy, soft.inclination / M_PI, stiff.dxy, stiff.inclination / M_PI);
+  EXPECT_LT(stiff.dxy, 0.7 * soft.dxy);
+  EXPECT_GT(stiff.inclination, soft.inclination);
+  EXPECT_LT(stiff.inclination, M_PI / 4 + 0.02);
 }
 
 }  // namespace
