@@ -1,5 +1,4 @@
 # The ROS 1 layer: ehd_capsule_node over ehd_core. Included only when catkin is found.
-include_directories(${catkin_INCLUDE_DIRS})
 file(GLOB EHD_ROS_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/ros/*.cpp)
 if(EHD_ROS_SOURCES)
   add_executable(ehd_capsule_node ${EHD_ROS_SOURCES})
