@@ -284,8 +284,8 @@ TEST(LatticeBoltzmann2DContract, RestartFromPopulationsContinuesBitForBit) {
 TEST(LatticeBoltzmann2DContract, OneAndTwoThreadsGiveIdenticalResults) {
   // Each node's update reads only the previous buffer, so the row split cannot change a bit.
   LbmParameters p;
-  p.nx = 96;
-  p.ny = 96;
+  p.nx = 128;  // >= 2 x 8192 nodes, so the kernel really uses two threads
+  p.ny = 130;
   p.viscosity = 0.05;
   LatticeBoltzmann2D one(p), two([&] {
     LbmParameters q = p;
@@ -311,7 +311,7 @@ TEST(LatticeBoltzmann2DContract, StreamingStoresGiveIdenticalResults) {
   for (int threads : {1, 2}) {
     LbmParameters p;
     p.nx = 601;
-    p.ny = 20;
+    p.ny = 28;  // >= 2 x 8192 nodes: two threads when asked
     p.viscosity = 0.05;
     p.threads = threads;
     p.forcing = ForcingScheme::kGuo;
