@@ -43,8 +43,8 @@ struct LbmParameters {
   double s_epsilon = 1.54;  // s_2, energy square epsilon (reference value)
   double s_q = 1.9;         // s_4 = s_6, heat fluxes q_x, q_y (reference value)
   ForcingScheme forcing = ForcingScheme::kSplitMomentum;  // reference eqs. (107)-(108)
-  int threads = 0;                                        // 0: OpenMP default
-  PopulationStores stores = PopulationStores::kAuto;      // a speed choice; results identical
+  int threads = 0;  // 0: OpenMP default; capped so that each thread gets >= 8192 nodes
+  PopulationStores stores = PopulationStores::kAuto;  // a speed choice; results identical
 };
 
 class LatticeBoltzmann2D {
