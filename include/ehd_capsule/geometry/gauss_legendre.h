@@ -8,8 +8,7 @@ namespace ehd {
 inline constexpr int kGaussPoints = 5;
 inline constexpr double kGaussNode[kGaussPoints] = {0.046910077030668, 0.230765344947158, 0.5,
                                                     0.769234655052842, 0.953089922969332};
-inline constexpr double kGaussWeight[kGaussPoints] = {0.118463442528095, 0.239314335249683,
-                                                      0.284444444444444, 0.239314335249683,
-                                                      0.118463442528095};
+inline constexpr double kGaussWeight[kGaussPoints] = {
+    0.118463442528095, 0.239314335249683, 0.284444444444444, 0.239314335249683, 0.118463442528095};
 
 }  // namespace ehd
