@@ -38,7 +38,7 @@ def converge(args, scene, grids, until, sets=()):
                                                            " ".join(common.load_average())))
     text = open(log).read()
     lines = text.splitlines()
-    start = next(i for i, l in enumerate(lines) if l.strip().startswith("N ") and "M" in l)
+    start = next(i for i, l in enumerate(lines) if l.split()[:2] == ["N", "M"])
     table = [l for l in lines[start:] if l.strip()]
     rows = []
     for l in table[1:]:
