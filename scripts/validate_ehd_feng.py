@@ -60,6 +60,9 @@ def main():
     p.add_argument("--ca-e", default="0.05,0.1,0.2,0.4")
     p.add_argument("--fine-ca-e", default="0.05,0.2", help="Ca_E values also run at N = 128")
     p.add_argument("--skip-fine", action="store_true")
+    p.add_argument("--skip-256", action="store_true",
+                   help="skip the N = 256 runs of Case C at Ca_E = 0.2 (L/a = 8 with a = 16 "
+                   "cells: resolution in the large box; L/a = 16 with a = 8: box size)")
     args = p.parse_args()
     ca_list = [float(v) for v in args.ca_e.split(",")]
     fine_list = [] if args.skip_fine else [float(v) for v in args.fine_ca_e.split(",")]
@@ -70,6 +73,9 @@ def main():
         for ca in fine_list:
             runs[(case, ca, 128, 4)] = make_run(case, ca, 128, 4)
             runs[(case, ca, 128, 8)] = make_run(case, ca, 128, 8)
+    if not args.skip_256:
+        runs[("C", 0.2, 256, 8)] = make_run("C", 0.2, 256, 8)
+        runs[("C", 0.2, 256, 16)] = make_run("C", 0.2, 256, 16)
     print("load average before: %s" % " ".join(common.load_average()))
     common.run_all(args, list(runs.values()))
     print("load average after: %s\n" % " ".join(common.load_average()))
