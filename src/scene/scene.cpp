@@ -194,7 +194,13 @@ std::vector<std::string> SplitPath(const std::string& key) {
 void SetPath(YAML::Node node, const std::vector<std::string>& path, std::size_t i,
              const YAML::Node& value, const std::string& override_text) {
   if (i + 1 == path.size()) {
-    node[path[i]] = value;
+    // An empty value ("electric=") removes the key; a YAML null would still count as present
+    // for blocks such as `electric:`.
+    if (value.IsNull()) {
+      node.remove(path[i]);
+    } else {
+      node[path[i]] = value;
+    }
     return;
   }
   YAML::Node child = node[path[i]];

@@ -104,6 +104,17 @@ TEST(Scene, OverridesApplyAndAreKeptInTheText) {
   ExpectSceneError(kMinimalCapsule, {"Ca"}, {"key=value"});
 }
 
+// An empty override removes a key: `--set electric= --set Ca_E=0` turns a field scene into one
+// that builds no electric solver (docs/scenes.md), even though `electric:` with an empty block
+// in a file does count as present.
+TEST(Scene, EmptyOverrideRemovesTheKey) {
+  const Scene with = LoadScene("shear_field", {"Ca_E=0"});
+  EXPECT_TRUE(with.electric_field);  // the file has an electric: block
+  const Scene without = LoadScene("shear_field", {"Ca_E=0", "electric="});
+  EXPECT_FALSE(without.electric_field);
+  EXPECT_THROW(LoadScene("shear_field", {"N="}), SceneError);  // N is required
+}
+
 // Every shipped scene loads and gives usable lattice values.
 TEST(Scene, ShippedScenesLoad) {
   const auto names = ListScenes();
