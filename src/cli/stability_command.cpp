@@ -14,7 +14,7 @@ namespace {
 
 const char* kUsage =
     "usage: ehd_sim stability [--scene NAME] [--steps N] [--set key=value ...]\n\n"
-    "Runs the extreme cases on SCENE (default shear_field) for N steps each (default 2000):\n"
+    "Runs the extreme cases on SCENE (default shear_field) for N steps each (default 20000, t = 2.6/k on shear_field):\n"
     "sigma_r = 1000 and 1/1000, eps_r = 1/10 and 10, Ca_E = 5, Ca = 0.4, E_b = 0.5, tau near\n"
     "1/2, V = 10, markers coarser than the grid, a capsule touching the walls. Each case either\n"
     "runs (final D_xy, theta, area drift, max Mach) or stops with the error that stopped it\n"
@@ -28,7 +28,7 @@ struct Case {
 
 int Stability(const std::vector<std::string>& args) {
   std::string scene_name = "shear_field";
-  long steps = 2000;
+  long steps = 20000;
   std::vector<std::string> base;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];

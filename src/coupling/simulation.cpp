@@ -332,8 +332,15 @@ void Simulation::Step() {
   }
   state_.max_mach = std::sqrt(max_speed2) / kLatticeSoundSpeed;
   if (state_.max_mach > scene_.numerics.max_mach) {
+    // Name the force behind the fast flow, so the user knows which number to lower.
+    const double membrane_max = m.membrane_density.colwise().norm().maxCoeff();
+    std::string forces = "; largest force density: membrane " + Fmt(membrane_max);
+    if (m.electric) {
+      forces += ", electric " + Fmt(m.electric_density.colwise().norm().maxCoeff()) +
+                " (Ca_E = " + Fmt(state_.ca_e) + ")";
+    }
     fail("lattice Mach number " + Fmt(state_.max_mach) + " > " + Fmt(scene_.numerics.max_mach) +
-         " (numerics.max_mach)");
+         " (numerics.max_mach)" + forces);
   }
   const double margin = 2.0 * grid_.h;
   for (int k = 0; k < markers; ++k) {
