@@ -94,8 +94,9 @@ TEST(Simulation, CapsuleInShearDeformsFromZero) {
 // f_d = sigma_r^2 + sigma_r + 1 - 3 eps_r, D > 0 elongated along the field (y). sigma_r = 4.75,
 // eps_r = 3.5: f_d = 17.8, D = +0.0359 (prolate, major axis vertical); sigma_r = 1.75:
 // f_d = -4.69, D = -0.0413 (oblate, major axis along x). At Ca_E = 0.2 on a 48^2 grid in a box
-// of 4a the steady D agrees within 20% (first-order theory, unbounded domain; ehd_sim converge
-// electric_drop shows the grid-converged value about 6% below Feng for sigma_r = 1.75).
+// of 4a the steady D agrees within 20% (first-order theory, unbounded domain; confinement at 4a
+// alone adds up to 10%, docs/validation_ehd.md sec. 1; the shipped electric_drop, walls at 8a,
+// is within 1% for sigma_r = 1.75).
 TEST(Simulation, ElectricDropDeformsAsFengPredicts) {
   for (const double sigma_r : {4.75, 1.75}) {
     SCOPED_TRACE(sigma_r);
