@@ -4,37 +4,31 @@
 
 namespace ehd {
 
-void MarkerFrames::Update(const ClosedCurve& c) {
+namespace {
+
+// Fills the frames from any curve type with size(), orientation() and AtMarker(k).
+template <typename Curve>
+void FillFrames(const Curve& c, MarkerFrames& f) {
   const int m = c.size();
-  if (tangent.cols() != m) {
-    tangent.resize(2, m);
-    normal.resize(2, m);
+  if (f.tangent.cols() != m) {
+    f.tangent.resize(2, m);
+    f.normal.resize(2, m);
   }
-  curvature.resize(m);
-  orientation = c.orientation();
+  f.curvature.resize(m);
+  f.orientation = c.orientation();
   for (int k = 0; k < m; ++k) {
     const CurvePoint p = c.AtMarker(k);
-    tangent.col(k) = p.tangent;
-    normal.col(k) = p.normal;
-    curvature[k] = p.curvature;
+    f.tangent.col(k) = p.tangent;
+    f.normal.col(k) = p.normal;
+    f.curvature[k] = p.curvature;
   }
 }
 
-void MarkerFrames::Update(const CurveSegments& c) {
-  const int m = c.size();
-  if (tangent.cols() != m) {
-    tangent.resize(2, m);
-    normal.resize(2, m);
-  }
-  curvature.resize(m);
-  orientation = c.orientation();
-  for (int k = 0; k < m; ++k) {
-    const CurvePoint p = c.AtMarker(k);
-    tangent.col(k) = p.tangent;
-    normal.col(k) = p.normal;
-    curvature[k] = p.curvature;
-  }
-}
+}  // namespace
+
+void MarkerFrames::Update(const ClosedCurve& c) { FillFrames(c, *this); }
+
+void MarkerFrames::Update(const CurveSegments& c) { FillFrames(c, *this); }
 
 void MembraneForceDensity(const MarkerFrames& frames, const ArcLengthStencil& stencil,
                           const std::vector<double>& segment_tension, const std::vector<double>* q,
