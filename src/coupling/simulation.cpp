@@ -105,6 +105,7 @@ Simulation::Simulation(const Scene& scene) : scene_(scene), units_(DeriveLattice
     mp.tension = units_.tension;
   } else {
     mp.shear_modulus = units_.tension;
+    mp.tension = scene_.prestress * units_.tension;  // tau = tau_p + E_s (lambda - 1)
     mp.membrane_viscosity = units_.membrane_viscosity;
     mp.bending_modulus = units_.bending_modulus;
   }

@@ -289,11 +289,13 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
     s.E_b = top.Number("E_b", Closed(0.0, 10.0), std::nullopt, "bending modulus E_B / (a^2 E_s)");
     s.eta = top.Number("eta", Closed(0.0, 100.0), std::nullopt,
                        "membrane viscosity ratio mu_s / (a mu)");
+    s.prestress = top.Number("prestress", Closed(0.0, 10.0), 0.0,
+                             "isotropic membrane pre-tension tau_p / E_s");
   } else {
-    for (const char* key : {"E_b", "eta"}) {
+    for (const char* key : {"E_b", "eta", "prestress"}) {
       if (top.Has(key)) {
         const double v = top.Number(key, Closed(0.0, 0.0), 0.0,
-                                    "a drop has no bending or membrane viscosity; needs "
+                                    "a drop has no bending, membrane viscosity or prestress; needs "
                                     "membrane: capsule");
         (void)v;
       }
@@ -445,7 +447,10 @@ std::string DescribeScene(const Scene& s) {
     out << "  Ca = " << s.Ca << ", Re = " << s.Re;
   else
     out << "  Oh = " << s.Oh;
-  if (s.membrane == MembraneKind::kCapsule) out << ", E_b = " << s.E_b << ", eta = " << s.eta;
+  if (s.membrane == MembraneKind::kCapsule) {
+    out << ", E_b = " << s.E_b << ", eta = " << s.eta;
+    if (s.prestress > 0.0) out << ", prestress = " << s.prestress;
+  }
   out << ", V = " << s.V << '\n';
   if (s.electric_field) {
     out << "  Ca_E = " << s.Ca_E << ", sigma_r = " << s.sigma_r << ", eps_r = " << s.eps_r << '\n';

@@ -7,6 +7,8 @@
 //   E_b   = E_B / (a^2 E_s)                                           eq. (120) (see units.h)
 //   eta   = mu_s / (a mu)                                             eq. (121)
 //   V     = mu_inside / mu_outside                                    sec. 5.4
+//   prestress = tau_p / E_s: optional isotropic pre-tension of a capsule membrane,
+//           tau = tau_p + E_s (lambda - 1) (not in song2019; 0 by default)
 //   Ca_E  = eps+ a E^2 / T                                            sec. 4.2.2 and 5.1
 //   sigma_r = sigma- / sigma+, eps_r = eps- / eps+ (inside / outside) sec. 4.2
 // plus the resolution (N grid cells across the domain, M markers), the geometry, the membrane
@@ -79,6 +81,7 @@ struct Scene {
   double Oh = 0.0;
   double E_b = 0.0;
   double eta = 0.0;
+  double prestress = 0.0;  // capsule: isotropic pre-tension tau_p / E_s (optional key)
   double V = 1.0;
   double Ca_E = 0.0;
   double sigma_r = 1.0;
