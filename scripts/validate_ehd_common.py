@@ -68,7 +68,7 @@ class Run:
                 p = subprocess.Popen(self.command(args), cwd=REPO, env=env, stdout=out,
                                      stderr=subprocess.STDOUT)
                 # CPU time of this child alone (user + sys): on a shared machine the wall time
-                # depends on the other engineers' load, the CPU time much less.
+                # depends on other jobs' load, the CPU time much less.
                 _, status, usage = os.wait4(p.pid, 0)
                 wall = time.time() - start
                 out.write("\nprocess wall %.3f s, process cpu %.3f s, exit %d, load %s\n" % (

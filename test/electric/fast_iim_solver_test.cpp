@@ -227,7 +227,7 @@ TEST(FastIimSolver, NonConvergenceIsReportedAsSolverError) {
   EXPECT_THROW(solver.Solve(c, SampleInterfaceProblem(e, g, c), gv, phi), SolverError);
 }
 
-// Cylinder of radius a in E_inf = (0, -1), sigma_r = sigma^-/sigma^+ (notes/fast-iim.md):
+// Cylinder of radius a in E_inf = (0, -1), sigma_r = sigma^-/sigma^+ (docs/electric_solver.md):
 // phi^- = 2/(1+sigma_r) y, phi^+ = y (1 + (1-sigma_r)/(1+sigma_r) a^2/r^2). Exact values are
 // imposed on the box sides, so the marker fields must converge to the exact ones.
 TEST(ElectricForce, CylinderFieldsAndMaxwellForceMatchExactSolution) {

@@ -1,5 +1,5 @@
 // Fast immersed interface method for div(sigma grad phi) = f with [phi] = w, [sigma phi_n] = v
-// (song2019 sec. 2.4, Z. Li's augmented approach; relations corrected in notes/fast-iim.md).
+// (song2019 sec. 2.4, Z. Li's augmented approach; relations corrected in docs/electric_solver.md).
 //
 // Augmented unknown G = [phi_n] at the M markers. For a given G:
 //   L Phi = F + C(W, G)                                          eq. (45)-(47)

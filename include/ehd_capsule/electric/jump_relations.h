@@ -1,6 +1,6 @@
 // Jump of the two smooth extensions phi^+_ext - phi^-_ext near the interface (song2019 eq. (81),
-// corrected in notes/fast-iim.md), expanded about the closest interface point X*, where the local
-// coordinates of a grid point are xi = d (signed distance), eta = 0:
+// corrected in docs/electric_solver.md), expanded about the closest interface point X*, where the
+// local coordinates of a grid point are xi = d (signed distance), eta = 0:
 //
 //   J(x) = [phi] + [phi_xi] d + 1/2 [phi_xixi] d^2 + O(d^3),
 //   [phi] = w,  [phi_xi] = g,  [phi_xixi] = [f/sigma] - w'' + g chi'' = [f/sigma] - w'' - g kappa

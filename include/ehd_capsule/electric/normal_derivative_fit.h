@@ -1,5 +1,5 @@
 // Weighted least-squares interpolation of phi_n^- and phi_eta^- at the markers from grid values
-// (song2019 sec. 2.4.2, eq. (66)-(87), written as a fit as in notes/fast-iim.md).
+// (song2019 sec. 2.4.2, eq. (66)-(87), written as a fit as in docs/electric_solver.md).
 //
 // At marker X_c with unit normal n and tangent t, take the grid points x within alpha of X_c,
 // local coordinates xi = (x - X_c).n, eta = (x - X_c).t, and fit
