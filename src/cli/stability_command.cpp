@@ -14,7 +14,8 @@ namespace {
 
 const char* kUsage =
     "usage: ehd_sim stability [--scene NAME] [--steps N] [--set key=value ...]\n\n"
-    "Runs the extreme cases on SCENE (default shear_field) for N steps each (default 20000, t = 2.6/k on shear_field):\n"
+    "Runs the extreme cases on SCENE (default shear_field) for N steps each (default 20000, t = "
+    "2.6/k on shear_field):\n"
     "sigma_r = 1000 and 1/1000, eps_r = 1/10 and 10, Ca_E = 5, Ca = 0.4, E_b = 0.5, tau near\n"
     "1/2, V = 10, markers coarser than the grid, a capsule touching the walls. Each case either\n"
     "runs (final D_xy, theta, area drift, max Mach) or stops with the error that stopped it\n"

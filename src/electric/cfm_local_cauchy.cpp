@@ -1,10 +1,5 @@
 // Least-squares solution of the CFM local Cauchy problem, song2019 eq. (18); see the header for
 // the functional, the two bases and where the code departs from the text.
-// GCC 12 with -march=native reports false "may be used uninitialized" warnings inside
-// avx512fintrin.h when it inlines Eigen's Householder QR kernels; they are not in this code.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
 
 #include "ehd_capsule/electric/cfm_local_cauchy.h"
 
@@ -12,14 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "ehd_capsule/geometry/gauss_legendre.h"
+
 namespace ehd {
 namespace {
-
-// 4-point Gauss-Legendre on [-1, 1].
-constexpr double kGauss4Node[4] = {-0.861136311594052575, -0.339981043584856265,
-                                   0.339981043584856265, 0.861136311594052575};
-constexpr double kGauss4Weight[4] = {0.347854845137453857, 0.652145154862546143,
-                                     0.652145154862546143, 0.347854845137453857};
 
 // Legendre polynomials P_0..P_3 with first and second derivatives.
 inline void Legendre3(double t, double* p, double* dp, double* ddp) {

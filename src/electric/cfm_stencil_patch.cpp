@@ -8,13 +8,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "ehd_capsule/geometry/gauss_legendre.h"
+
 namespace ehd {
 namespace {
 
-constexpr double kGauss4Node[4] = {-0.861136311594052575, -0.339981043584856265,
-                                   0.339981043584856265, 0.861136311594052575};
-constexpr double kGauss4Weight[4] = {0.347854845137453857, 0.652145154862546143,
-                                     0.652145154862546143, 0.347854845137453857};
 // Bisection steps locating where the curve leaves the diamond or the patch: the bracket shrinks
 // from the walking step h/4 to ~1e-5 h. The ends only bound the quadrature interval and the
 // bounding box, so this precision is ample (exact data stay exact on any sub-interval).
