@@ -57,6 +57,17 @@ class BlockReader {
     }
   }
 
+  // A YAML scalar that reads as a number; false for blocks, lists and text.
+  static bool ScalarAsDouble(const YAML::Node& v, double* x) {
+    if (!v.IsScalar()) return false;
+    try {
+      *x = v.as<double>();
+      return true;
+    } catch (const YAML::Exception&) {
+      return false;
+    }
+  }
+
   bool Has(const std::string& key) {
     known_.insert(key);
     return node_ && node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
@@ -75,14 +86,7 @@ class BlockReader {
     if (!Has(key)) return Missing(key, fallback, meaning + ", a number in " + range.Text());
     const YAML::Node v = node_[key];
     double x = 0.0;
-    bool ok = v.IsScalar();
-    if (ok) {
-      try {
-        x = v.as<double>();
-      } catch (const YAML::Exception&) {
-        ok = false;
-      }
-    }
+    const bool ok = ScalarAsDouble(v, &x);
     if (!ok || !std::isfinite(x)) {
       Fail(Name(key),
            "expected a number in " + range.Text() + " (" + meaning + "), got " + ScalarText(v));
@@ -104,14 +108,7 @@ class BlockReader {
     }
     const YAML::Node v = node_[key];
     double x = 0.0;
-    bool ok = v.IsScalar();
-    if (ok) {
-      try {
-        x = v.as<double>();
-      } catch (const YAML::Exception&) {
-        ok = false;
-      }
-    }
+    const bool ok = ScalarAsDouble(v, &x);
     if (!ok || !std::isfinite(x) || x != std::floor(x)) {
       Fail(Name(key),
            "expected an integer in " + range + " (" + meaning + "), got " + ScalarText(v));
