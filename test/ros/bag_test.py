@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """A recorded run (test/ros/bag.test) holds exactly steps/publish_every CapsuleState messages with
 consecutive published step numbers, the latched scene once, one shape and marker array per state,
-one clock tick per step, and is closed (readable, not .active) when the node stops."""
+one clock tick per step, and is closed (readable, not .active) when the node stops; scripts/plot_bag
+turns it into PNG plots."""
 import os
 import sys
 import time
@@ -37,6 +38,19 @@ class BagTest(unittest.TestCase):
             states = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/state"])]
             counts = {t: bag.get_message_count(t) for t in
                       ("/ehd_capsule/shape", "/ehd_capsule/markers", "/ehd_capsule/scene", "/clock")}
+        # scripts/plot_bag turns the same bag into the two PNG files it names.
+        import subprocess
+        import tempfile
+        import rospkg
+        script = os.path.join(rospkg.RosPack().get_path("ehd_capsule"), "scripts", "plot_bag")
+        out_dir = tempfile.mkdtemp(prefix="ehd_plot_bag_")
+        run = subprocess.run(["/usr/bin/python3", script, path, "--out", out_dir],
+                             capture_output=True, text=True, timeout=120)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        written = run.stdout.split()
+        self.assertEqual(len(written), 2, run.stdout)
+        for png in written:
+            self.assertGreater(os.path.getsize(png), 1000, png)
         os.remove(path)
         self.assertEqual(len(states), steps // every)
         self.assertEqual([m.step for m in states], list(range(every, steps + 1, every)))
