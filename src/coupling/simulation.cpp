@@ -261,8 +261,13 @@ void Simulation::Step() {
       bool solve = m.last_solve_step < 0 || m.solved_field != m.field ||
                    step - m.last_solve_step >= scene_.numerics.electric_every;
       if (!solve && scene_.numerics.electric_move_tolerance > 0.0) {
-        const double moved = (m.X - m.markers_at_last_solve).colwise().norm().maxCoeff();
-        solve = moved > scene_.numerics.electric_move_tolerance;
+        // Largest marker displacement since the last solve (no temporary: this runs every step).
+        double moved2 = 0.0;
+        for (int k = 0; k < markers; ++k) {
+          moved2 = std::max(moved2, (m.X.col(k) - m.markers_at_last_solve.col(k)).squaredNorm());
+        }
+        const double tol = scene_.numerics.electric_move_tolerance;
+        solve = moved2 > tol * tol;
       }
       if (solve) {
         m.electric->SetAppliedField(m.field);
@@ -300,8 +305,14 @@ void Simulation::Step() {
   m.fluid->ClearForce();
   m.ib->Spread(m.X, m.marker_force, m.fluid->force_x(), m.fluid->force_y());
   if (m.viscosity) {
+    // The fluid's field was last set from this indicator (build, reset, restore), so passing
+    // only the band the indicator rewrote keeps them equal at O(band) cost per step.
     m.viscosity->Update(m.curve);
-    m.fluid->SetViscosityField(m.viscosity->viscosity());
+    if (m.viscosity->last_update_was_full()) {
+      m.fluid->SetViscosityField(m.viscosity->viscosity());
+    } else {
+      m.fluid->UpdateViscosityField(m.viscosity->viscosity(), m.viscosity->updated_nodes());
+    }
   }
 
   // 4. Fluid.

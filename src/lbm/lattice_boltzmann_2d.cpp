@@ -177,13 +177,24 @@ void LatticeBoltzmann2D::ClearForce() {
 void LatticeBoltzmann2D::SetViscosityField(const std::vector<double>& nu) {
   CheckNodeField(nu, "viscosity field");
   s_nu_field_.resize(n_);
-  for (std::size_t node = 0; node < n_; ++node) {
-    if (!(std::isfinite(nu[node]) && nu[node] > 0.0)) {
-      CheckViscosity(("viscosity field[" + std::to_string(node) + "]").c_str(), nu[node]);
-    }
-    s_nu_field_[node] = d2q9::ShearRateFromViscosity(nu[node]);
-  }
+  for (std::size_t node = 0; node < n_; ++node) SetNodeViscosity(nu, node);
   variable_viscosity_ = true;
+}
+
+void LatticeBoltzmann2D::UpdateViscosityField(const std::vector<double>& nu,
+                                              const std::vector<std::size_t>& nodes) {
+  if (!variable_viscosity_) {
+    throw std::logic_error("UpdateViscosityField: call SetViscosityField first");
+  }
+  CheckNodeField(nu, "viscosity field");
+  for (const std::size_t node : nodes) SetNodeViscosity(nu, node);
+}
+
+void LatticeBoltzmann2D::SetNodeViscosity(const std::vector<double>& nu, std::size_t node) {
+  if (!(std::isfinite(nu[node]) && nu[node] > 0.0)) {
+    CheckViscosity(("viscosity field[" + std::to_string(node) + "]").c_str(), nu[node]);
+  }
+  s_nu_field_[node] = d2q9::ShearRateFromViscosity(nu[node]);
 }
 
 void LatticeBoltzmann2D::ClearViscosityField() {

@@ -77,6 +77,9 @@ class LatticeBoltzmann2D {
 
   // Per-node kinematic viscosity (viscosity contrast); each value finite and > 0 (tau > 1/2).
   void SetViscosityField(const std::vector<double>& nu);
+  // Re-reads nu only at the listed nodes (a moving interface changes a band of the field); needs
+  // a field set before. Same validation as SetViscosityField.
+  void UpdateViscosityField(const std::vector<double>& nu, const std::vector<std::size_t>& nodes);
   void ClearViscosityField();  // back to the uniform parameters().viscosity
   bool has_viscosity_field() const { return variable_viscosity_; }
 
@@ -100,6 +103,7 @@ class LatticeBoltzmann2D {
   long step() const { return step_; }
 
  private:
+  void SetNodeViscosity(const std::vector<double>& nu, std::size_t node);
   void CheckNodeField(const std::vector<double>& v, const char* name) const;
   void CollideInPlaceWithoutForce();
   void StreamCollide();
