@@ -273,7 +273,7 @@ void Simulation::Step() {
         m.electric->SetAppliedField(m.field);
         InterfaceSolveReport report;
         try {
-          report = m.electric->Solve(m.curve);
+          report = m.electric->Solve(m.curve, static_cast<double>(step));
         } catch (const std::exception& e) {
           fail(std::string("electric potential solve failed: ") + e.what());
         }
@@ -445,7 +445,7 @@ std::string Simulation::Pipeline() const {
 namespace {
 
 constexpr char kCheckpointMagic[8] = {'E', 'H', 'D', 'C', 'K', 'P', 'T', '\0'};
-constexpr std::int32_t kCheckpointVersion = 1;
+constexpr std::int32_t kCheckpointVersion = 2;  // 2: electric warm-start history
 
 class Writer {
  public:
@@ -555,7 +555,12 @@ void Simulation::Save(const std::string& path) const {
   // Electric.
   w.Pod(static_cast<std::int32_t>(m.electric != nullptr));
   if (m.electric) {
+    const LeakyDielectricSolver::WarmStartHistory& h = m.electric->warm_start_history();
+    w.Pod(m.electric->applied_field());
     w.Vec(m.electric->jump_normal_derivative());
+    w.Vec(h.g_previous);
+    w.Pod(h.time_previous);
+    w.Pod(h.time_last);
     w.Mat(m.electric_density);
     w.Mat(m.markers_at_last_solve);
     w.Pod(m.last_solve_step);
@@ -628,7 +633,13 @@ void Simulation::Restore(const std::string& path) {
     throw std::runtime_error("checkpoint " + path + ": electric field presence differs");
   }
   if (m.electric) {
+    m.electric->SetAppliedField(r.Pod<double>());
     m.electric->set_jump_normal_derivative(r.Vec());
+    LeakyDielectricSolver::WarmStartHistory h;
+    h.g_previous = r.Vec();
+    h.time_previous = r.Pod<double>();
+    h.time_last = r.Pod<double>();
+    m.electric->set_warm_start_history(h);
     m.electric_density = r.Mat();
     m.markers_at_last_solve = r.Mat();
     m.last_solve_step = r.Pod<long>();

@@ -1,0 +1,141 @@
+// Warm starts of the leaky dielectric solve in a time-stepping setting
+// (LeakyDielectricSolver::Solve(curve, time), SetAppliedField rescaling).
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <vector>
+
+#include "ehd_capsule/electric/leaky_dielectric_solver.h"
+#include "ehd_capsule/geometry/closed_curve.h"
+
+namespace ehd {
+namespace {
+
+constexpr int kMarkers = 126;
+constexpr double kRadius = 20.0;
+
+// A drop of radius 20 (lattice units) that translates and deforms smoothly with time:
+// x = r(t, theta) (cos, sin) + (0.6 t, 0.2 t) h, r = R + 0.02 t cos 2 theta. One unit of time moves
+// the markers by ~0.6 h, one step of 1/60 by ~0.01 h (what a marker does in an LBM step).
+ClosedCurve DropAt(double t) {
+  Eigen::Matrix2Xd x(2, kMarkers);
+  for (int k = 0; k < kMarkers; ++k) {
+    const double th = 2 * M_PI * k / kMarkers, r = kRadius + 0.02 * t * std::cos(2 * th);
+    x.col(k) << r * std::cos(th) + 0.6 * t, r * std::sin(th) + 0.2 * t;
+  }
+  return ClosedCurve(x);
+}
+
+double MaxAbsDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) d = std::max(d, std::abs(a[k] - b[k]));
+  return d;
+}
+
+double MaxAbs(const std::vector<double>& a) {
+  double d = 0.0;
+  for (double v : a) d = std::max(d, std::abs(v));
+  return d;
+}
+
+const Grid2D kGrid{128, 128, 1.0, -64, -64};
+
+TEST(LeakyDielectricWarmStart, ExtrapolatedGuessIsSecondOrderInTheTimeStep) {
+  // G(t) is smooth in t, so G1 alone misses G(t2) by O(dt) and the linear extrapolation
+  // 2 G1 - G0 by O(dt^2): halving dt must cut the first error ~2x and the second ~4x, and at
+  // dt = 1/60 the extrapolated guess must be far closer (here < 1/5) than the plain one.
+  // The errors are measured against the converged solution at tolerance 1e-12 (its own GMRES
+  // error is far below both).
+  GmresOptions tight;
+  tight.tolerance = 1e-12;
+  double plain_error[2], extrapolated_error[2];
+  int level = 0;
+  for (double dt : {1.0 / 30, 1.0 / 60}) {
+    LeakyDielectricSolver solver(kGrid, 3.0, 1.0, 2.0, 1.0, tight);
+    solver.SetAppliedField(0.01);
+    std::vector<double> g[3];
+    for (int s = 0; s < 3; ++s) {
+      solver.Solve(DropAt(5.0 + s * dt), s);
+      g[s] = solver.jump_normal_derivative();
+    }
+    std::vector<double> guess(kMarkers);
+    for (int k = 0; k < kMarkers; ++k) guess[k] = 2 * g[1][k] - g[0][k];
+    plain_error[level] = MaxAbsDifference(g[1], g[2]);
+    extrapolated_error[level] = MaxAbsDifference(guess, g[2]);
+    ++level;
+  }
+  EXPECT_GT(plain_error[0] / plain_error[1], 1.6);
+  EXPECT_LT(plain_error[0] / plain_error[1], 2.5);
+  EXPECT_GT(extrapolated_error[0] / extrapolated_error[1], 3.0);
+  EXPECT_LT(extrapolated_error[1], 0.2 * plain_error[1]);
+}
+
+TEST(LeakyDielectricWarmStart, TimedSolvesNeedFewerIterationsAndAgreeWithColdSolves) {
+  // Markers moving ~0.01 h per solve (dt = 1/60): after two timed solves the extrapolated start
+  // leaves at most 1 GMRES iteration where the plain warm start (untimed Solve) needs more, and
+  // every result agrees with a cold solve to the GMRES tolerance (1e-7 relative to |b|, i.e.
+  // differences ~1e-6 of max |G|).
+  const double dt = 1.0 / 60;
+  LeakyDielectricSolver timed(kGrid, 3.0, 1.0, 2.0, 1.0);
+  LeakyDielectricSolver untimed(kGrid, 3.0, 1.0, 2.0, 1.0);
+  LeakyDielectricSolver cold(kGrid, 3.0, 1.0, 2.0, 1.0);
+  for (LeakyDielectricSolver* s : {&timed, &untimed, &cold}) s->SetAppliedField(0.01);
+  int timed_iterations = 0, untimed_iterations = 0, cold_iterations = 0;
+  for (int s = 0; s < 8; ++s) {
+    const ClosedCurve c = DropAt(5.0 + s * dt);
+    const int it_timed = timed.Solve(c, s).iterations;
+    const int it_untimed = untimed.Solve(c).iterations;
+    cold.set_jump_normal_derivative({});
+    const int it_cold = cold.Solve(c).iterations;
+    EXPECT_LT(MaxAbsDifference(timed.jump_normal_derivative(), cold.jump_normal_derivative()),
+              1e-5 * MaxAbs(cold.jump_normal_derivative()))
+        << "solve " << s;
+    if (s >= 2) {
+      EXPECT_LE(it_timed, 1) << "solve " << s;
+      timed_iterations += it_timed;
+      untimed_iterations += it_untimed;
+      cold_iterations += it_cold;
+    }
+  }
+  EXPECT_LT(timed_iterations, untimed_iterations);
+  EXPECT_LT(untimed_iterations, cold_iterations);
+}
+
+TEST(LeakyDielectricWarmStart, NewFieldStrengthRescalesTheStartingGuess) {
+  // G is linear in E (f = w = v = 0, box data E y): on the same curve, doubling E makes the
+  // rescaled previous G the solution, so GMRES stops at once, where a cold start needs >= 3.
+  LeakyDielectricSolver solver(kGrid, 3.0, 1.0, 2.0, 1.0);
+  const ClosedCurve c = DropAt(1.0);
+  solver.SetAppliedField(0.01);
+  solver.Solve(c, 0.0);
+  const std::vector<double> g_half = solver.jump_normal_derivative();
+  solver.SetAppliedField(0.02);
+  const InterfaceSolveReport warm = solver.Solve(c, 1.0);
+  EXPECT_EQ(warm.iterations, 0);
+  EXPECT_TRUE(warm.converged);
+  for (int k = 0; k < kMarkers; ++k) {
+    EXPECT_NEAR(solver.jump_normal_derivative()[k], 2 * g_half[k], 1e-6 * MaxAbs(g_half));
+  }
+  solver.set_jump_normal_derivative({});
+  EXPECT_GE(solver.Solve(c).iterations, 3);
+}
+
+TEST(LeakyDielectricWarmStart, HistoryRoundTripsAndIsForgottenWhenGIsSet) {
+  LeakyDielectricSolver solver(kGrid, 3.0, 1.0, 2.0, 1.0);
+  solver.SetAppliedField(0.01);
+  solver.Solve(DropAt(0.0), 10.0);
+  solver.Solve(DropAt(0.02), 12.0);
+  const LeakyDielectricSolver::WarmStartHistory h = solver.warm_start_history();
+  EXPECT_EQ(h.time_previous, 10.0);
+  EXPECT_EQ(h.time_last, 12.0);
+  EXPECT_EQ(h.g_previous.size(), static_cast<std::size_t>(kMarkers));
+  solver.set_jump_normal_derivative(solver.jump_normal_derivative());
+  EXPECT_TRUE(solver.warm_start_history().g_previous.empty());
+  EXPECT_TRUE(std::isnan(solver.warm_start_history().time_last));
+  solver.set_warm_start_history(h);
+  EXPECT_EQ(solver.warm_start_history().time_last, 12.0);
+}
+
+}  // namespace
+}  // namespace ehd
