@@ -1,7 +1,8 @@
 // Where the time of one coupled EHD step goes (song2019 sec. 3.6, the step of
 // coupling/simulation.cpp): the same five stages assembled from the component libraries, each
 // timed with steady_clock over S steps after W warm-up steps:
-//   electric  LeakyDielectricSolver::Solve (fast IIM + GMRES, warm-started) and F_E
+//   electric  LeakyDielectricSolver::Solve(curve, step) (fast IIM + GMRES, warm-started from the
+//             extrapolation of the last two solutions, as the simulation does) and F_E
 //   membrane  MembraneModel::ComputeForce and the arc elements dl
 //   spread    F dl to the grid (eq. (106))
 //   lbm       one D2Q9 MRT step
@@ -125,7 +126,7 @@ int main(int argc, char** argv) {
   for (long n = 0; n < warmup + steps; ++n) {
     const bool timed = n >= warmup;
     const double t0 = CpuMs();
-    const ehd::InterfaceSolveReport& report = electric.Solve(curve);
+    const ehd::InterfaceSolveReport& report = electric.Solve(curve, static_cast<double>(n));
     const Eigen::Matrix2Xd& fe = electric.force();
     const double t1 = CpuMs();
     membrane.ComputeForce(curve, 1.0, density);
