@@ -249,6 +249,7 @@ InterfaceSolveReport CorrectionFunctionSolver::Solve(const ClosedCurve& curve,
   } else {
     for (std::size_t idx = 0; idx < g.size(); ++idx) rhs_[idx] = problem.f[idx] / sigma;
   }
+  AddDirichletGhostCorrection(g, bc_, problem.boundary, rhs_);
   AddBoundaryDataToRhs(g, bc_, problem.boundary, rhs_);
   std::fill(correction_.begin(), correction_.end(), 0.0);
 

@@ -1,6 +1,7 @@
 // Fast immersed interface method (song2019 sec. 2.4; see fast_iim_solver.h for the equations).
 #include "ehd_capsule/electric/fast_iim_solver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -22,6 +23,42 @@ double HalfPlaneFraction(double a, double b, double c) {
   const double beta = b > 0.0 ? -a / b : a / b;
   if (std::abs(beta) < 1e-12) return std::clamp(alpha, 0.0, 1.0);
   return (ClampPrimitive(alpha + 0.5 * beta) - ClampPrimitive(alpha - 0.5 * beta)) / beta;
+}
+
+// First moment, integral of u = (x - x_c).(a, b) over the part u < c of the unit square centred
+// at x_c ((a, b) a unit vector): c A(c) - integral of A(u) du from u_min to c (midpoint rule).
+double FirstMomentInside(double a, double b, double c) {
+  const double u_min = -0.5 * (std::abs(a) + std::abs(b));
+  const double u_max = -u_min;
+  const double top = std::min(c, u_max);
+  if (top <= u_min) return 0.0;
+  constexpr int kSteps = 16;
+  const double du = (top - u_min) / kSteps;
+  double integral = 0.0;
+  for (int q = 0; q < kSteps; ++q) integral += HalfPlaneFraction(a, b, u_min + (q + 0.5) * du);
+  return top * HalfPlaneFraction(a, b, top) - integral * du;
+}
+
+// Area, in units of h^2, between the tangent line through the closest point X* = x_c - d n and
+// the curve xi = -kappa eta^2 / 2 (local frame at X*), inside the cell of centre x_c and side h:
+// integral of kappa eta^2 / 2 over the part of the tangent line inside the cell, i.e.
+// kappa (eta_2^3 - eta_1^3) / 6 (subtract it from the half-plane fraction).
+double CurvatureAreaCorrection(const Eigen::Vector2d& n, const Eigen::Vector2d& t, double d,
+                               double kappa, double h) {
+  double lo = -1e300, hi = 1e300;
+  for (int a = 0; a < 2; ++a) {
+    // |-d n_a + eta t_a| <= h / 2
+    if (std::abs(t[a]) < 1e-14) {
+      if (std::abs(d * n[a]) > 0.5 * h) return 0.0;
+      continue;
+    }
+    double e1 = (d * n[a] - 0.5 * h) / t[a], e2 = (d * n[a] + 0.5 * h) / t[a];
+    if (e1 > e2) std::swap(e1, e2);
+    lo = std::max(lo, e1);
+    hi = std::min(hi, e2);
+  }
+  if (!(hi > lo)) return 0.0;
+  return kappa * (hi * hi * hi - lo * lo * lo) / (6.0 * h * h);
 }
 
 }  // namespace
@@ -95,15 +132,17 @@ void FastIimSolver::Residual(const ClosedCurve& curve, const double* g, bool wit
   }
 }
 
-void FastIimSolver::ComputeInteriorFlux(const ClosedCurve& curve, const PeriodicCubicSpline& fjump,
-                                        bool f_is_zero) {
+void FastIimSolver::ComputeInteriorFlux(const ClosedCurve& curve, const PeriodicCubicSpline& fminus,
+                                        const PeriodicCubicSpline& fminus_xi, bool f_is_zero) {
   const Grid2D& grid = poisson_.grid();
   const double h = grid.h;
   const int m = curve.size();
-  // Interior flux: the integral of phi_n^- over the curve equals that of f^-/sigma^- over
-  // Omega^- (divergence theorem). Cells cut by the curve count with their inside fraction
-  // (half-plane through the closest point); outside centres take f^-/sigma^- from their inside
-  // neighbours.
+  // Interior flux: the integral of phi_n^- over the curve equals that of F^- = f^-/sigma^- over
+  // Omega^- (divergence theorem). Quadrature, O(h^3) for smooth F^- and curve: cells farther
+  // than 0.75 h from the curve by their side (midpoint rule); cells cut by the curve with their
+  // inside area fraction (half-plane through the closest point minus the sliver between the
+  // tangent and the osculating parabola), times F^- at the centre plus d_n F^- times the first
+  // moment of the inside part about the centre; plus the (h^2/24) Laplace(F) midpoint term.
   arc_weight_.resize(m);
   perimeter_ = 0.0;
   for (int k = 0; k < m; ++k) {
@@ -112,37 +151,31 @@ void FastIimSolver::ComputeInteriorFlux(const ClosedCurve& curve, const Periodic
   }
   interior_flux_ = 0.0;
   if (f_is_zero) return;
+  double sum = 0.0;
   for (std::size_t idx = 0; idx < grid.size(); ++idx) {
     const int slot = classes_.band_slot(idx);
     if (slot < 0 || std::abs(classes_.band_distance()[slot]) > 0.75 * h) {
-      if (classes_.side(idx) < 0) interior_flux_ += rhs_base_[idx];
+      if (classes_.side(idx) < 0) sum += rhs_base_[idx];
       continue;
     }
     const double s_star = classes_.band_parameter()[slot];
     const CurvePoint c = curve.At(s_star);
-    const double fraction =
-        HalfPlaneFraction(c.normal.x(), c.normal.y(), -classes_.band_distance()[slot] / h);
+    const double d = classes_.band_distance()[slot];
+    const double fraction = HalfPlaneFraction(c.normal.x(), c.normal.y(), -d / h) -
+                            CurvatureAreaCorrection(c.normal, c.tangent, d, c.curvature, h);
     if (fraction <= 0.0) continue;
-    double f_minus = rhs_base_[idx];
-    if (classes_.side(idx) > 0) {
-      // f^-/sigma^- extended from the inside neighbours (O(h) on an O(h^2) area).
-      const int i = static_cast<int>(idx % grid.nx), j = static_cast<int>(idx / grid.nx);
-      const int nb[4][2] = {{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}};
-      double sum = 0.0;
-      int count = 0;
-      for (const auto& q : nb) {
-        if (q[0] < 0 || q[0] >= grid.nx || q[1] < 0 || q[1] >= grid.ny) continue;
-        const std::size_t nidx = grid.index(q[0], q[1]);
-        if (classes_.side(nidx) < 0) {
-          sum += rhs_base_[nidx];
-          ++count;
-        }
-      }
-      f_minus = count > 0 ? sum / count : rhs_base_[idx] - fjump.Value(s_star);
-    }
-    interior_flux_ += fraction * f_minus;
+    const double dxi_f = fminus_xi.Value(s_star);
+    // Inside centres: their own F; outside centres: F^- extrapolated along the normal.
+    const double f_centre =
+        classes_.side(idx) < 0 ? rhs_base_[idx] : fminus.Value(s_star) + d * dxi_f;
+    sum += fraction * f_centre + FirstMomentInside(c.normal.x(), c.normal.y(), -d / h) * h * dxi_f;
   }
-  interior_flux_ *= h * h;
+  // Midpoint rule per cell: integral = h^2 F_c + (h^4 / 24) Laplace(F)_c + O(h^6); summed over
+  // Omega^- the second term is (h^2 / 24) times the integral of Laplace(F^-), i.e. (h^2 / 24)
+  // times the curve integral of d_n F^- (divergence theorem), d_n F^- from the one-sided fits.
+  double boundary = 0.0;
+  for (int k = 0; k < m; ++k) boundary += fminus_xi.Value(curve.knot(k)) * arc_weight_[k];
+  interior_flux_ = h * h * sum + h * h / 24.0 * boundary;
 }
 
 InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const InterfaceProblem& problem,
@@ -194,13 +227,21 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
     const double f = problem.f.empty() ? 0.0 : problem.f[idx];
     rhs_base_[idx] = f / (classes_.side(idx) < 0 ? sigma_minus_ : sigma_plus_);
   }
-  // [f/sigma] at the markers (O(h) side averages), then the data part of J at band points.
+  // [f/sigma] and [d_xi(f/sigma)] at the markers, then the data part of J at band points.
   std::vector<double>& fm = dn_plus_;  // reuse marker buffers as scratch
   std::vector<double>& fp = dt_plus_;
-  fit_.SideAverages(rhs_base_.data(), fm.data(), fp.data());
-  for (int k = 0; k < m; ++k) fm[k] = fp[k] - fm[k];
+  std::vector<double>& fm_xi = dn_minus_;
+  std::vector<double>& fp_xi = dt_minus_;
+  fit_.SideExtrapolation(rhs_base_.data(), fm.data(), fp.data(), fm_xi.data(), fp_xi.data());
+  const PeriodicCubicSpline fminus = curve.FitScalar(fm);
+  const PeriodicCubicSpline fminus_xi = curve.FitScalar(fm_xi);
+  for (int k = 0; k < m; ++k) {
+    fm[k] = fp[k] - fm[k];
+    fm_xi[k] = fp_xi[k] - fm_xi[k];
+  }
   const PeriodicCubicSpline fjump = curve.FitScalar(fm);
-  ComputeInteriorFlux(curve, fjump, problem.f.empty());
+  const PeriodicCubicSpline fjump_xi = curve.FitScalar(fm_xi);
+  ComputeInteriorFlux(curve, fminus, fminus_xi, problem.f.empty());
   const bool has_w = !problem.w.empty();
   PeriodicCubicSpline ws;
   if (has_w) ws = curve.FitScalar(problem.w);
@@ -217,7 +258,8 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
       curve.ArcLengthDerivatives(ws, bs[b], &w_s, &w_ss);
     }
     curve.ArcLengthDerivatives(kappa_spline, bs[b], &kappa_s, &kappa_ss);
-    band_data_[b] = JumpDataPart(w, w_s, w_ss, fjump.Value(bs[b]), bk[b], kappa_s, bd[b]);
+    band_data_[b] = JumpDataPart(w, w_s, w_ss, fjump.Value(bs[b]), fjump_xi.Value(bs[b]), bk[b],
+                                 kappa_s, bd[b]);
     band_gcoef_[b] = JumpGCoefficient(bd[b], bk[b]);
     band_gsscoef_[b] = JumpGssCoefficient(bd[b]);
   }
@@ -251,6 +293,7 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
     w_s_[k] = 0.0;
     if (has_w) curve.ArcLengthDerivatives(ws, curve.knot(k), &w_s_[k], &w_ss);
   }
+  AddDirichletGhostCorrection(grid, poisson_.boundaries(), problem.boundary, rhs_base_);
   AddBoundaryDataToRhs(grid, poisson_.boundaries(), problem.boundary, rhs_base_);
 
   InterfaceSolveReport report;

@@ -4,6 +4,7 @@
 
 #include <fftw3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <mutex>
@@ -156,6 +157,37 @@ void AddBoundaryDataToRhs(const Grid2D& grid, const PoissonBoundaries& bc,
   fold(bc.x_max, data.x_max, ny, "x_max", [&](int j) { return grid.index(nx - 1, j); });
   fold(bc.y_min, data.y_min, nx, "y_min", [&](int i) { return grid.index(i, 0); });
   fold(bc.y_max, data.y_max, nx, "y_max", [&](int i) { return grid.index(i, ny - 1); });
+}
+
+void AddDirichletGhostCorrection(const Grid2D& grid, const PoissonBoundaries& bc,
+                                 const PoissonBoundaryData& data, std::vector<double>& rhs) {
+  const double inv_h2 = 1.0 / (grid.h * grid.h);
+  const int nx = grid.nx, ny = grid.ny;
+  // F of the four corner cells before any change (two sides correct each of them).
+  const std::size_t corner[4] = {grid.index(0, 0), grid.index(nx - 1, 0), grid.index(0, ny - 1),
+                                 grid.index(nx - 1, ny - 1)};
+  const double corner_f[4] = {rhs[corner[0]], rhs[corner[1]], rhs[corner[2]], rhs[corner[3]]};
+  auto f_at = [&](std::size_t idx) {
+    for (int c = 0; c < 4; ++c)
+      if (idx == corner[c]) return corner_f[c];
+    return rhs[idx];
+  };
+  auto fold = [&](BoundaryKind kind, const std::vector<double>& side, int count, auto index_of) {
+    if (kind != BoundaryKind::kDirichlet || count < 3 || static_cast<int>(side.size()) != count) {
+      return;
+    }
+    for (int k = 0; k < count; ++k) {
+      const int c = std::clamp(k, 1, count - 2);
+      const double g_tt = (side[c - 1] - 2.0 * side[c] + side[c + 1]) * inv_h2;
+      const std::size_t idx = index_of(k);
+      const double term = 0.25 * (f_at(idx) - g_tt);
+      if (term != 0.0) rhs[idx] -= term;
+    }
+  };
+  fold(bc.x_min, data.x_min, ny, [&](int j) { return grid.index(0, j); });
+  fold(bc.x_max, data.x_max, ny, [&](int j) { return grid.index(nx - 1, j); });
+  fold(bc.y_min, data.y_min, nx, [&](int i) { return grid.index(i, 0); });
+  fold(bc.y_max, data.y_max, nx, [&](int i) { return grid.index(i, ny - 1); });
 }
 
 PoissonBoundaryData SampleBoundaryData(

@@ -8,6 +8,47 @@
 #include <string>
 
 namespace ehd {
+namespace {
+
+// Rows (value at the origin, xi-derivative there) of the weighted least-squares fit through the
+// points xi, eta (in units of h) with weights wt: quadratic if >= 9 points and well
+// conditioned, else linear if >= 4 points and well conditioned, else the weighted mean (zero
+// derivative).
+void OneSidedRows(const std::vector<double>& xi, const std::vector<double>& eta,
+                  const std::vector<double>& wt, double h, std::vector<double>& value_row,
+                  std::vector<double>& dxi_row) {
+  const int count = static_cast<int>(xi.size());
+  value_row.assign(count, 0.0);
+  dxi_row.assign(count, 0.0);
+  if (count == 0) return;
+  for (int terms : {6, 3}) {
+    if (count < (terms == 6 ? 9 : 4)) continue;
+    Eigen::MatrixXd a(count, terms);
+    Eigen::VectorXd w(count);
+    for (int q = 0; q < count; ++q) {
+      if (terms == 6) {
+        a.row(q) << 1.0, xi[q], eta[q], 0.5 * xi[q] * xi[q], xi[q] * eta[q], 0.5 * eta[q] * eta[q];
+      } else {
+        a.row(q) << 1.0, xi[q], eta[q];
+      }
+      w(q) = wt[q];
+    }
+    const Eigen::MatrixXd normal = a.transpose() * w.asDiagonal() * a;
+    Eigen::LDLT<Eigen::MatrixXd> ldlt(normal);
+    if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-8) continue;
+    const Eigen::MatrixXd rows = ldlt.solve(a.transpose() * w.asDiagonal());
+    for (int q = 0; q < count; ++q) {
+      value_row[q] = rows(0, q);
+      dxi_row[q] = rows(1, q) / h;
+    }
+    return;
+  }
+  double total = 0.0;
+  for (int q = 0; q < count; ++q) total += wt[q];
+  for (int q = 0; q < count; ++q) value_row[q] = wt[q] / total;
+}
+
+}  // namespace
 
 void NormalDerivativeFit::Update(const ClosedCurve& curve, const InterfaceClassification& classes,
                                  double radius) {
@@ -25,8 +66,12 @@ void NormalDerivativeFit::Update(const ClosedCurve& curve, const InterfaceClassi
   gamma_xi_.clear();
   gamma_eta_.clear();
   weight_.clear();
-  Eigen::Matrix<double, Eigen::Dynamic, 6> a;
+  side_value_.clear();
+  side_dxi_.clear();
+  Eigen::MatrixXd a;
   Eigen::VectorXd wt;
+  std::vector<double> side_xi, side_eta, side_wt, value_row, dxi_row;
+  std::vector<int> side_entry;
   for (int k = 0; k < m; ++k) {
     offset_[k] = static_cast<int>(point_.size());
     const CurvePoint c = curve.AtMarker(k);
@@ -57,24 +102,65 @@ void NormalDerivativeFit::Update(const ClosedCurve& curve, const InterfaceClassi
       throw std::runtime_error("NormalDerivativeFit: marker " + std::to_string(k) + " has only " +
                                std::to_string(count) + " grid points within the fit radius");
     }
-    a.resize(count, 6);
-    wt.resize(count);
-    for (int q = 0; q < count; ++q) {
-      const double xi = gamma_xi_[first + q], eta = gamma_eta_[first + q];
-      a.row(q) << 1.0, xi, eta, 0.5 * xi * xi, xi * eta, 0.5 * eta * eta;
-      wt(q) = weight_[first + q];
-      if (plus_slot_[first + q] < 0 && classes.side(point_[first + q]) > 0) {
+    for (int q = first; q < first + count; ++q) {
+      if (plus_slot_[q] < 0 && classes.side(point_[q]) > 0) {
         throw std::runtime_error("NormalDerivativeFit: an outside fit point is not in the band");
       }
     }
-    // Rows 1 and 2 of (A^T W A)^{-1} A^T W, then undo the h scaling of xi and eta.
-    const Eigen::Matrix<double, 6, 6> normal = a.transpose() * wt.asDiagonal() * a;
-    Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(normal);
-    if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-12) {
-      throw std::runtime_error("NormalDerivativeFit: fit at marker " + std::to_string(k) +
-                               " is rank deficient");
+    // One-sided fits, one per side.
+    side_value_.resize(point_.size());
+    side_dxi_.resize(point_.size());
+    for (int side : {-1, 1}) {
+      side_xi.clear();
+      side_eta.clear();
+      side_wt.clear();
+      side_entry.clear();
+      for (int q = first; q < first + count; ++q) {
+        if ((plus_slot_[q] >= 0 ? 1 : -1) != side) continue;
+        side_xi.push_back(gamma_xi_[q]);
+        side_eta.push_back(gamma_eta_[q]);
+        side_wt.push_back(weight_[q]);
+        side_entry.push_back(q);
+      }
+      OneSidedRows(side_xi, side_eta, side_wt, h, value_row, dxi_row);
+      for (std::size_t e = 0; e < side_entry.size(); ++e) {
+        side_value_[side_entry[e]] = value_row[e];
+        side_dxi_[side_entry[e]] = dxi_row[e];
+      }
     }
-    const Eigen::MatrixXd rows = ldlt.solve(a.transpose() * wt.asDiagonal());
+    // Rows 1 and 2 of (A^T W A)^{-1} A^T W (cubic if possible, else quadratic), then undo the
+    // h scaling of xi and eta.
+    Eigen::MatrixXd rows;
+    for (int terms : {10, 6}) {
+      if (count < (terms == 10 ? 14 : 6)) continue;  // cubic: keep it overdetermined
+      a.resize(count, terms);
+      wt.resize(count);
+      for (int q = 0; q < count; ++q) {
+        const double xi = gamma_xi_[first + q], eta = gamma_eta_[first + q];
+        a(q, 0) = 1.0;
+        a(q, 1) = xi;
+        a(q, 2) = eta;
+        a(q, 3) = 0.5 * xi * xi;
+        a(q, 4) = xi * eta;
+        a(q, 5) = 0.5 * eta * eta;
+        if (terms == 10) {
+          a(q, 6) = xi * xi * xi / 6.0;
+          a(q, 7) = 0.5 * xi * xi * eta;
+          a(q, 8) = 0.5 * xi * eta * eta;
+          a(q, 9) = eta * eta * eta / 6.0;
+        }
+        wt(q) = weight_[first + q];
+      }
+      const Eigen::MatrixXd normal = a.transpose() * wt.asDiagonal() * a;
+      Eigen::LDLT<Eigen::MatrixXd> ldlt(normal);
+      if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-12) continue;
+      rows = ldlt.solve(a.transpose() * wt.asDiagonal());
+      break;
+    }
+    if (rows.rows() == 0) {
+      throw std::runtime_error("NormalDerivativeFit: fit at marker " + std::to_string(k) +
+                               " is rank deficient (" + std::to_string(count) + " points)");
+    }
     for (int q = 0; q < count; ++q) {
       gamma_xi_[first + q] = rows(1, q) / h;
       gamma_eta_[first + q] = rows(2, q) / h;
@@ -129,6 +215,24 @@ void NormalDerivativeFit::SideAverages(const double* field, double* minus_averag
     }
     minus_average[k] = wm > 0 ? sm / wm : 0.0;
     plus_average[k] = wp > 0 ? sp / wp : 0.0;
+  }
+}
+
+void NormalDerivativeFit::SideExtrapolation(const double* field, double* minus_value,
+                                            double* plus_value, double* minus_dxi,
+                                            double* plus_dxi) const {
+  const int m = markers();
+  for (int k = 0; k < m; ++k) {
+    double value[2] = {0.0, 0.0}, dxi[2] = {0.0, 0.0};
+    for (int q = offset_[k]; q < offset_[k + 1]; ++q) {
+      const int side = plus_slot_[q] >= 0 ? 1 : 0;
+      value[side] += side_value_[q] * field[point_[q]];
+      dxi[side] += side_dxi_[q] * field[point_[q]];
+    }
+    if (minus_value) minus_value[k] = value[0];
+    if (plus_value) plus_value[k] = value[1];
+    if (minus_dxi) minus_dxi[k] = dxi[0];
+    if (plus_dxi) plus_dxi[k] = dxi[1];
   }
 }
 

@@ -7,15 +7,18 @@
 // irregular point x_ij the correction C_ij = (1/h^2) sum_k s_k J(x_k) over the stencil neighbours
 // x_k across the curve (s_k = +1 if x_ij is inside and x_k outside, -1 the other way), with J the
 // jump expansion of jump_relations.h about x_k's closest curve point (G enters through its
-// periodic spline). phi_n^- at the markers comes from the weighted least-squares quadratic fit
-// (normal_derivative_fit.h) and phi_n^+ = phi_n^- + G, eq. (87). The Schur system (57) is the
+// periodic spline). phi_n^- at the markers comes from the weighted least-squares cubic fit
+// (normal_derivative_fit.h; the reference fits a quadratic) and phi_n^+ = phi_n^- + G, eq. (87). The Schur system (57) is the
 // scaled flux residual of Xu (eq. (49)-(50)), which equals ([sigma phi_n] - v) / [sigma]:
 //   sigma^+ > sigma^-:  R = phi_n^- + (sigma^+/[sigma]) G - v/[sigma]
 //   sigma^- > sigma^+:  R = phi_n^+ + (sigma^-/[sigma]) G - v/[sigma]
 // R is affine in G; restarted GMRES solves R(G) = 0 with the mat-vec R(G) - R(0), one Poisson
 // solve each (eq. (59)-(61)). sigma^+ = sigma^-: G = v / sigma is known and no GMRES is run.
-// [f/sigma] in J is estimated at the markers from the grid (weighted side averages, O(h), which
-// is enough since it multiplies d^2 = O(h^2)).
+// [f/sigma] and [d_xi(f/sigma)] in J are estimated at the markers by one-sided weighted
+// least-squares fits of each side's grid values of F (NormalDerivativeFit::SideExtrapolation,
+// O(h^3) and O(h^2)). Dirichlet box sides use the second-order ghost
+// (AddDirichletGhostCorrection), which the reference does not need (its boundary values sit on
+// grid nodes).
 //
 // Departure from the text for sigma^- > sigma^+: the scaled residual is then
 // phi_n^- - (sigma^+/(sigma^- - sigma^+)) G + ..., and a near-constant G changes phi_n^- very
@@ -24,7 +27,7 @@
 // by sigma^-/sigma^+ (order and GMRES iterations degrade at sigma^-/sigma^+ >= 10). We replace
 // the mean of the fitted phi_n^- by its exact value from the divergence theorem,
 //   sum_k phi_n^-(X_k) dl_k = integral over Omega^- of f^-/sigma^- dA,
-// (the area integral by cut-cell fractions), so the constant mode of G is fixed by the flux
+// (the area integral by an O(h^3) cut-cell quadrature, see ComputeInteriorFlux), so the constant mode of G is fixed by the flux
 // balance itself, as in the continuous problem. The same near-null behaviour hits modes of G
 // that the grid cannot resolve (wavelength ~2 marker spacings < ~4h), so for sigma^- > sigma^+
 // GMRES therefore works on control markers spaced >= ~1.5 h (FastIimOptions), with G at the
@@ -109,8 +112,8 @@ class FastIimSolver {
   // equals flux (see the file comment).
   void ImposeInteriorFlux(double flux);
   // Arc weights dl_k, perimeter and interior_flux_ (integral of f^-/sigma^- over Omega^-).
-  void ComputeInteriorFlux(const ClosedCurve& curve, const PeriodicCubicSpline& fjump,
-                           bool f_is_zero);
+  void ComputeInteriorFlux(const ClosedCurve& curve, const PeriodicCubicSpline& fminus,
+                           const PeriodicCubicSpline& fminus_xi, bool f_is_zero);
   // Fills band_jump_ for g (plus the data part if with_data) and solves for phi.
   void SolveForPotential(const ClosedCurve& curve, const double* g, bool with_data,
                          std::vector<double>& phi);

@@ -14,8 +14,8 @@
 //   phi_xixi + kappa/(1 + kappa xi) phi_xi + (1/(1 + kappa xi)) d_s((1/(1 + kappa xi)) phi_s),
 // and d/dxi of it at xi = 0 gives
 //   [phi_xixixi] = [d_xi(f/sigma)] - kappa [f/sigma] + 2 kappa^2 g + 3 kappa w'' + kappa' w' - g''
-// (kappa', w', g'' along the arc; [d_xi(f/sigma)] is not available from grid data and is set
-// to 0, which leaves an O(h^3 * that jump) term, still within second order).
+// (kappa', w', g'' along the arc; [f/sigma] and [d_xi(f/sigma)] come from one-sided fits of the
+// grid values of F on each side, NormalDerivativeFit::SideExtrapolation).
 // J is affine in g: J = J_data(w, w', w'', [f/sigma]) + g (d - kappa d^2/2 + kappa^2 d^3/3)
 // - g'' d^3 / 6.
 // Check (sec. 2.5 ex. 1): w = 0, g = 2, kappa = 2, f = 0 gives [phi_xixi] = -4 = phi^+_rr(1/2)
@@ -26,10 +26,12 @@
 namespace ehd {
 
 // Part of J that does not depend on g.
+// f_over_sigma_jump = [f/sigma], f_over_sigma_dxi_jump = [d_xi(f/sigma)] at the closest point.
 inline double JumpDataPart(double w, double w_s, double w_ss, double f_over_sigma_jump,
-                           double kappa, double kappa_s, double d) {
+                           double f_over_sigma_dxi_jump, double kappa, double kappa_s, double d) {
   const double second = f_over_sigma_jump - w_ss;
-  const double third = -kappa * f_over_sigma_jump + 3.0 * kappa * w_ss + kappa_s * w_s;
+  const double third =
+      f_over_sigma_dxi_jump - kappa * f_over_sigma_jump + 3.0 * kappa * w_ss + kappa_s * w_s;
   return w + d * d * (0.5 * second + d * third / 6.0);
 }
 // Coefficient of g in J.
