@@ -208,7 +208,7 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
   // Geometry: sides, band, crossing pairs, fit rows.
   const double h = grid.h;
   classes_.Update(grid, curve, options_.band_width_h * h);
-  fit_.Update(curve, classes_, options_.fit_radius_h * h);
+  fit_.Update(curve, classes_, options_.fit_radius_h * h, options_.fit_degree);
   const int nb = classes_.band_size();
   band_data_.resize(nb);
   band_gcoef_.resize(nb);

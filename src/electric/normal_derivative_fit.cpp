@@ -51,13 +51,17 @@ void OneSidedRows(const std::vector<double>& xi, const std::vector<double>& eta,
 }  // namespace
 
 void NormalDerivativeFit::Update(const ClosedCurve& curve, const InterfaceClassification& classes,
-                                 double radius) {
+                                 double radius, int degree) {
   const Grid2D& grid = classes.grid();
   const double h = grid.h;
   if (!(radius >= 2.0 * h) || radius > classes.band_width()) {
     throw std::invalid_argument(
         "NormalDerivativeFit: radius must be in [2h, band width] = [" + std::to_string(2.0 * h) +
         ", " + std::to_string(classes.band_width()) + "], got " + std::to_string(radius));
+  }
+  if (degree != 2 && degree != 3) {
+    throw std::invalid_argument("NormalDerivativeFit: degree must be 2 or 3, got " +
+                                std::to_string(degree));
   }
   const int m = curve.size();
   offset_.assign(m + 1, 0);
@@ -132,6 +136,7 @@ void NormalDerivativeFit::Update(const ClosedCurve& curve, const InterfaceClassi
     // h scaling of xi and eta.
     Eigen::MatrixXd rows;
     for (int terms : {10, 6}) {
+      if (terms == 10 && degree < 3) continue;
       if (count < (terms == 10 ? 14 : 6)) continue;  // cubic: keep it overdetermined
       a.resize(count, terms);
       wt.resize(count);

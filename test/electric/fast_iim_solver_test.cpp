@@ -98,14 +98,45 @@ TEST(InterfaceClassification, NonCircularCurvesAgreeWithContains) {
 }
 
 TEST(NormalDerivativeFit, ReproducesQuadraticsExactly) {
-  // With no jump (J = 0), the fit of a quadratic is exact, so phi_n and phi_tau are exact.
+  // With no jump (J = 0), the fit of a quadratic is exact, so phi_n and phi_tau are exact, for
+  // the reference's quadratic fit (degree 2) and for the default cubic one.
+  const Grid2D g{40, 40, 0.05, -1, -1};
+  const ClosedCurve c(CircleMarkers(60, 0.5, {0.03, -0.02}));
+  InterfaceClassification cls;
+  cls.Update(g, c, 3.5 * g.h);
+  for (int degree : {2, 3}) {
+    NormalDerivativeFit fit;
+    fit.Update(c, cls, 3.0 * g.h, degree);
+    auto q = [](double x, double y) { return 1 + 2 * x - 3 * y + x * x - 0.5 * x * y + 2 * y * y; };
+    std::vector<double> phi(g.size()), jump(cls.band_size(), 0.0), dn(60), dt(60);
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) phi[g.index(i, j)] = q(g.x(i), g.y(j));
+    fit.Evaluate(phi.data(), jump.data(), dn.data(), dt.data());
+    for (int k = 0; k < 60; ++k) {
+      const CurvePoint p = c.AtMarker(k);
+      const double x = p.position.x(), y = p.position.y();
+      const Eigen::Vector2d grad(2 + 2 * x - 0.5 * y, -3 - 0.5 * x + 4 * y);
+      EXPECT_NEAR(dn[k], grad.dot(p.normal), 1e-9);
+      EXPECT_NEAR(dt[k], grad.dot(p.tangent), 1e-9);
+    }
+  }
+  EXPECT_THROW(NormalDerivativeFit().Update(c, cls, 3.0 * g.h, 4), std::invalid_argument);
+}
+
+TEST(NormalDerivativeFit, ReproducesCubicsExactly) {
+  // The fit is cubic where a marker has enough points (all of them here), so phi_n and phi_tau
+  // of a cubic polynomial are exact too (a quadratic fit would be off by O(h^2) * 3rd
+  // derivatives ~ 1e-2 here).
   const Grid2D g{40, 40, 0.05, -1, -1};
   const ClosedCurve c(CircleMarkers(60, 0.5, {0.03, -0.02}));
   InterfaceClassification cls;
   cls.Update(g, c, 3.5 * g.h);
   NormalDerivativeFit fit;
   fit.Update(c, cls, 3.0 * g.h);
-  auto q = [](double x, double y) { return 1 + 2 * x - 3 * y + x * x - 0.5 * x * y + 2 * y * y; };
+  auto q = [](double x, double y) {
+    return 1 + 2 * x - 3 * y + x * x - 0.5 * x * y + 2 * y * y + 3 * x * x * x - 2 * x * x * y +
+           x * y * y - 4 * y * y * y;
+  };
   std::vector<double> phi(g.size()), jump(cls.band_size(), 0.0), dn(60), dt(60);
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) phi[g.index(i, j)] = q(g.x(i), g.y(j));
@@ -113,9 +144,106 @@ TEST(NormalDerivativeFit, ReproducesQuadraticsExactly) {
   for (int k = 0; k < 60; ++k) {
     const CurvePoint p = c.AtMarker(k);
     const double x = p.position.x(), y = p.position.y();
-    const Eigen::Vector2d grad(2 + 2 * x - 0.5 * y, -3 - 0.5 * x + 4 * y);
-    EXPECT_NEAR(dn[k], grad.dot(p.normal), 1e-9);
-    EXPECT_NEAR(dt[k], grad.dot(p.tangent), 1e-9);
+    const Eigen::Vector2d grad(2 + 2 * x - 0.5 * y + 9 * x * x - 4 * x * y + y * y,
+                               -3 - 0.5 * x + 4 * y - 2 * x * x + 2 * x * y - 12 * y * y);
+    EXPECT_NEAR(dn[k], grad.dot(p.normal), 1e-8);
+    EXPECT_NEAR(dt[k], grad.dot(p.tangent), 1e-8);
+  }
+}
+
+TEST(NormalDerivativeFit, OneSidedExtrapolationIsExactOnEachSidesQuadratic) {
+  // A field that is one quadratic inside and another outside (a jump in value and in normal
+  // derivative): each side's fit sees only its own points, so the one-sided limits and normal
+  // derivatives at the markers are exact (quadratic side fits); the side averages used before
+  // are off by O(h) (checked to be much worse). Also exact for a linear field on coarse data.
+  const Grid2D g{40, 40, 0.05, -1, -1};
+  const ClosedCurve c(CircleMarkers(50, 0.45, {0.04, 0.01}));
+  InterfaceClassification cls;
+  cls.Update(g, c, 3.5 * g.h);
+  NormalDerivativeFit fit;
+  fit.Update(c, cls, 3.0 * g.h);
+  auto inner = [](double x, double y) { return 4 - x + 2 * y + 3 * x * x - x * y; };
+  auto outer = [](double x, double y) { return -1 + 5 * x + y * y - 2 * x * y; };
+  auto inner_grad = [](double x, double y) { return Eigen::Vector2d(-1 + 6 * x - y, 2 - x); };
+  auto outer_grad = [](double x, double y) { return Eigen::Vector2d(5 - 2 * y, 2 * y - 2 * x); };
+  std::vector<double> field(g.size());
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      const std::size_t idx = g.index(i, j);
+      field[idx] = cls.side(idx) < 0 ? inner(g.x(i), g.y(j)) : outer(g.x(i), g.y(j));
+    }
+  }
+  const int m = c.size();
+  std::vector<double> vm(m), vp(m), dm(m), dp(m), am(m), ap(m);
+  fit.SideExtrapolation(field.data(), vm.data(), vp.data(), dm.data(), dp.data());
+  fit.SideAverages(field.data(), am.data(), ap.data());
+  double average_error = 0.0;
+  for (int k = 0; k < m; ++k) {
+    const CurvePoint p = c.AtMarker(k);
+    const double x = p.position.x(), y = p.position.y();
+    EXPECT_NEAR(vm[k], inner(x, y), 1e-9);
+    EXPECT_NEAR(vp[k], outer(x, y), 1e-9);
+    EXPECT_NEAR(dm[k], inner_grad(x, y).dot(p.normal), 1e-8);
+    EXPECT_NEAR(dp[k], outer_grad(x, y).dot(p.normal), 1e-8);
+    average_error = std::max(average_error, std::abs(ap[k] - am[k] - (outer(x, y) - inner(x, y))));
+  }
+  EXPECT_GT(average_error, 1e-3);  // the O(h) estimate this replaces
+  // Null outputs are allowed.
+  fit.SideExtrapolation(field.data(), vm.data(), nullptr, nullptr, nullptr);
+  for (int k = 0; k < m; ++k)
+    EXPECT_NEAR(vm[k], inner(c.AtMarker(k).position.x(), c.AtMarker(k).position.y()), 1e-9);
+}
+
+TEST(FastIimSolver, JumpExpansionWithSourceJumpsMatchesExample3ToFourthOrder) {
+  // Example 3 with sigma- = sigma+ = 1 (so G = v exactly): phi^- = r^2, phi^+ = r^4 - 0.1 log 2r
+  // + const, F^- = 4, F^+ = 16 r^2: [f/sigma] = -3.6 and [d_xi(f/sigma)] = 16 at r = 1/2. The
+  // cubic expansion with both is the Taylor polynomial of phi^+ - phi^- in d, remainder
+  // [phi_rrrr] d^4 / 24 = (24 + 9.6) d^4 / 24 = 1.4 d^4, plus spline errors of the curvature
+  // and 5th-order terms: bound 2 d^4; dropping
+  // [d_xi(f/sigma)] would leave 16 d^3 / 6 (3e-4 at d = h), using side averages for [f/sigma]
+  // an O(h) error times d^2 / 2.
+  const InterfaceExample e = MakeInterfaceExample("3", 1.0, 1.0);
+  const Grid2D g = e.MakeGrid(40);
+  const ClosedCurve c(e.Markers(120));
+  FastIimSolver solver(g, PoissonBoundaries{});
+  std::vector<double> gv, phi;
+  solver.Solve(c, SampleInterfaceProblem(e, g, c), gv, phi);
+  const auto& cls = solver.classification();
+  ASSERT_FALSE(cls.crossing_pairs().empty());
+  for (const auto& pair : cls.crossing_pairs()) {
+    const int b = pair.neighbour_slot;
+    const double d = cls.band_distance()[b];
+    const double r = 0.5 + d;  // closest point on the circle r = 1/2: d = r - 1/2
+    const double exact = (r * r * r * r - 0.1 * std::log(2 * r) + 0.25 - 0.0625) - r * r;
+    EXPECT_NEAR(solver.band_jump()[b], exact, 2.0 * std::pow(d, 4) + 1e-9) << d;
+  }
+  for (double gk : gv) EXPECT_NEAR(gk, -0.7, 1e-12);
+}
+
+TEST(FastIimSolver, InteriorFluxQuadratureIsThirdOrder) {
+  // The interior flux (integral of F^- over Omega^-) against the exact curve integral of
+  // phi_n^- (divergence theorem, fine trapezoid sum). The cut-cell quadrature with the
+  // curvature sliver, the first moment and the (h^2/24) Laplace(F) term is O(h^3); the
+  // half-plane fractions with cell-centre F it replaces were O(h^2) with errors 1e-3 (N = 40)
+  // and 2e-4 (N = 80) on these two examples.
+  for (const char* name : {"2", "ellipse"}) {
+    const InterfaceExample e = MakeInterfaceExample(name, 2.0, 1.0);
+    const ClosedCurve fine(e.Markers(4000));
+    double exact = 0.0;
+    for (int k = 0; k < fine.size(); ++k) {
+      const CurvePoint p = fine.AtMarker(k);
+      const double dl = 0.5 * (fine.SegmentArcLength((k + fine.size() - 1) % fine.size()) +
+                               fine.SegmentArcLength(k));
+      exact += e.grad_minus(p.position).dot(p.normal) * dl;
+    }
+    for (int n : {40, 80}) {
+      const Grid2D g = e.MakeGrid(n);
+      const ClosedCurve c(e.Markers(e.DefaultMarkers(n)));
+      FastIimSolver solver(g, PoissonBoundaries{});
+      std::vector<double> gv, phi;
+      solver.Solve(c, SampleInterfaceProblem(e, g, c), gv, phi);
+      EXPECT_NEAR(solver.interior_flux(), exact, n == 40 ? 5e-5 : 1e-5) << name << " N = " << n;
+    }
   }
 }
 
@@ -156,25 +284,48 @@ double SolveError(const InterfaceExample& e, int n, InterfaceSolveReport* report
 
 TEST(FastIimSolver, SecondOrderOnReferenceExamplesAndBothSigmaOrderings) {
   // Second order: error ratio ~4 per halving of h (averaged over 40 -> 160, as single steps
-  // oscillate). Tables 4-7 of song2019 at N = 80 bound the error (ex. 2: 7.05e-5, ex. 3-A:
-  // 3.68e-4, ex. 4: 2.06e-5). GMRES should need few iterations for every sigma ratio.
+  // oscillate). GMRES should need few iterations for every sigma ratio.
   struct Case {
     const char* name;
-    double sm, sp, table_error_80;
+    double sm, sp;
   };
-  const Case cases[] = {{"2", 1, 2, 7.05e-5}, {"3", 1, 10, 3.68e-4}, {"3", 10, 1, 1e9},
-                        {"3", 1, 1000, 1e9},  {"3", 1000, 1, 1e9},   {"4", 1, 1, 2.06e-5},
-                        {"4", 1, 100, 1e9},   {"4", 100, 1, 1e9}};
+  const Case cases[] = {{"2", 1, 2}, {"3", 1, 10},  {"3", 10, 1},  {"3", 1, 1000}, {"3", 1000, 1},
+                        {"4", 1, 1}, {"4", 1, 100}, {"4", 100, 1}, {"1", 1, 1},    {"1", 1000, 1}};
   for (const Case& k : cases) {
     const InterfaceExample e = MakeInterfaceExample(k.name, k.sm, k.sp);
     InterfaceSolveReport r80, r160;
-    const double e40 = SolveError(e, 40), e80 = SolveError(e, 80, &r80);
+    const double e40 = SolveError(e, 40);
+    SolveError(e, 80, &r80);
     const double e160 = SolveError(e, 160, &r160);
     EXPECT_GT(0.5 * std::log2(e40 / e160), 1.75) << k.name << " " << k.sm << "/" << k.sp;
-    EXPECT_LT(e80, k.table_error_80) << k.name;
     EXPECT_TRUE(r80.converged && r160.converged);
     EXPECT_LT(r80.iterations, 20) << k.name << " " << k.sm << "/" << k.sp;
     EXPECT_LT(r160.iterations, 20) << k.name << " " << k.sm << "/" << k.sp;
+  }
+}
+
+TEST(FastIimSolver, ErrorsBelowTheReferenceTablesAtEveryGrid) {
+  // song2019 Tables 3-7 (L-inf error at N = 40, 80, 160, 320; same h as ours): the fast IIM
+  // must be at or below the published error at every N. Example 1 needs the second-order
+  // Dirichlet ghost (the reference's boundary values sit on grid nodes).
+  struct Case {
+    const char* name;
+    double sm, sp;
+    double table[4];
+  };
+  const Case cases[] = {{"1", 1, 1, {3.44e-4, 1.07e-4, 3.11e-5, 6.56e-6}},
+                        {"2", 1, 2, {3.08e-4, 7.05e-5, 1.64e-5, 4.11e-6}},
+                        {"3", 1, 10, {1.60e-3, 3.68e-4, 8.89e-5, 2.05e-5}},
+                        {"3", 1, 100, {3.55e-4, 8.24e-5, 1.95e-5, 4.14e-6}},
+                        {"4", 1, 1, {7.39e-5, 2.06e-5, 5.56e-6, 1.38e-6}}};
+  for (const Case& k : cases) {
+    const InterfaceExample e = MakeInterfaceExample(k.name, k.sm, k.sp);
+    int level = 0;
+    for (int n : {40, 80, 160, 320}) {
+      EXPECT_LT(SolveError(e, n), k.table[level])
+          << "example " << k.name << " sigma+ = " << k.sp << " N = " << n;
+      ++level;
+    }
   }
 }
 

@@ -135,6 +135,85 @@ TEST(FastPoissonSolver, SecondOrderOnManufacturedSolutionForEveryBoundaryCombina
   }
 }
 
+// Local truncation error, in the cells next to the box, of the 5-point operator with the
+// folded side data: max |L_h(u) - (F + side terms)| over the boundary cells, where u is the
+// exact solution at the cell centres and F = Laplace(u) there.
+double BoundaryTruncation(int n, bool ghost_correction) {
+  const Grid2D g{n, n, 1.0 / n, 0.0, 0.0};
+  const PoissonBoundaries bc{};  // all Dirichlet
+  // Curved Dirichlet data on every side: u_tt != 0 and u_nn != 0 at every face.
+  auto u = [](double x, double y) {
+    return std::sin(1.7 * x + 0.3) * std::exp(0.8 * y) + x * x * y;
+  };
+  auto lap = [](double x, double y) {
+    return (0.64 - 2.89) * std::sin(1.7 * x + 0.3) * std::exp(0.8 * y) + 2.0 * y;
+  };
+  std::vector<double> exact(g.size()), rhs(g.size());
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      exact[g.index(i, j)] = u(g.x(i), g.y(j));
+      rhs[g.index(i, j)] = lap(g.x(i), g.y(j));
+    }
+  }
+  const PoissonBoundaryData data = SampleBoundaryData(g, bc, u, nullptr);
+  if (ghost_correction) AddDirichletGhostCorrection(g, bc, data, rhs);
+  AddBoundaryDataToRhs(g, bc, data, rhs);
+  const std::vector<double> lu = ApplyLaplacian(g, bc, exact);
+  double worst = 0.0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      if (i > 0 && j > 0 && i < n - 1 && j < n - 1) continue;
+      worst = std::max(worst, std::abs(lu[g.index(i, j)] - rhs[g.index(i, j)]));
+    }
+  }
+  return worst;
+}
+
+TEST(FastPoissonSolver, DirichletGhostCorrectionMakesTheGhostValueThirdOrder) {
+  // The plain ghost u_{-1} = 2 g - u_0 misses (h^2/4) u_nn at the face, so the truncation error
+  // of the boundary cells is u_nn / 4 = O(1) (an O(h^2) error of the effective boundary value):
+  // it must not fall with h. The correction uses u_nn = F - g_tt with F at the cell centre (h/2
+  // from the face) and g_tt by second differences (one point off at the side ends), both O(h):
+  // what is left is an O(h) truncation, i.e. an O(h^3) ghost value, so the boundary truncation
+  // must halve with h and be far below the plain one.
+  const double plain20 = BoundaryTruncation(20, false), plain40 = BoundaryTruncation(40, false);
+  EXPECT_GT(plain40, 0.8 * plain20);  // O(1)
+  EXPECT_GT(plain40, 0.1);
+  const double fixed20 = BoundaryTruncation(20, true), fixed40 = BoundaryTruncation(40, true);
+  const double fixed80 = BoundaryTruncation(80, true);
+  EXPECT_GT(fixed20 / fixed40, 1.8) << fixed20 << " " << fixed40;
+  EXPECT_GT(fixed40 / fixed80, 1.8) << fixed40 << " " << fixed80;
+  EXPECT_LT(fixed80, 0.1 * plain40);
+}
+
+TEST(FastPoissonSolver, DirichletGhostCorrectionActsOnlyOnDirichletSides) {
+  // Linear side data (g_tt = 0) and F = 1: the corrected ghost subtracts (F - g_tt)/4 = 1/4 in
+  // each cell per adjacent Dirichlet side (1/2 in a corner between two), nothing at Neumann or
+  // periodic sides, nothing inside.
+  const Grid2D g{12, 10, 0.1, -0.6, -0.5};
+  const PoissonBoundaries cases[] = {
+      PoissonBoundaries{},
+      PoissonBoundaries{BoundaryKind::kNeumann, BoundaryKind::kNeumann, BoundaryKind::kDirichlet,
+                        BoundaryKind::kDirichlet},
+      PoissonBoundaries{BoundaryKind::kPeriodic, BoundaryKind::kPeriodic, BoundaryKind::kDirichlet,
+                        BoundaryKind::kNeumann}};
+  for (const PoissonBoundaries& bc : cases) {
+    const PoissonBoundaryData data = SampleBoundaryData(
+        g, bc, [](double x, double y) { return 2 + 3 * x - y; },
+        [](double, double) { return Eigen::Vector2d(3, -1); });
+    std::vector<double> rhs(g.size(), 1.0);
+    AddDirichletGhostCorrection(g, bc, data, rhs);
+    const auto is_d = [](BoundaryKind k) { return k == BoundaryKind::kDirichlet ? 1 : 0; };
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) {
+        const int sides = (i == 0 ? is_d(bc.x_min) : 0) + (i == g.nx - 1 ? is_d(bc.x_max) : 0) +
+                          (j == 0 ? is_d(bc.y_min) : 0) + (j == g.ny - 1 ? is_d(bc.y_max) : 0);
+        EXPECT_NEAR(rhs[g.index(i, j)], 1.0 - 0.25 * sides, 1e-9) << i << " " << j;
+      }
+    }
+  }
+}
+
 TEST(FastPoissonSolver, RejectsUnpairedPeriodicSidesAndBadSizes) {
   const Grid2D g{8, 8, 0.1, 0, 0};
   EXPECT_THROW(

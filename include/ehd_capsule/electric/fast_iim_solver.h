@@ -8,8 +8,9 @@
 // x_k across the curve (s_k = +1 if x_ij is inside and x_k outside, -1 the other way), with J the
 // jump expansion of jump_relations.h about x_k's closest curve point (G enters through its
 // periodic spline). phi_n^- at the markers comes from the weighted least-squares cubic fit
-// (normal_derivative_fit.h; the reference fits a quadratic) and phi_n^+ = phi_n^- + G, eq. (87). The Schur system (57) is the
-// scaled flux residual of Xu (eq. (49)-(50)), which equals ([sigma phi_n] - v) / [sigma]:
+// (normal_derivative_fit.h; the reference fits a quadratic) and phi_n^+ = phi_n^- + G, eq. (87).
+// The Schur system (57) is the scaled flux residual of Xu (eq. (49)-(50)), which equals ([sigma
+// phi_n] - v) / [sigma]:
 //   sigma^+ > sigma^-:  R = phi_n^- + (sigma^+/[sigma]) G - v/[sigma]
 //   sigma^- > sigma^+:  R = phi_n^+ + (sigma^-/[sigma]) G - v/[sigma]
 // R is affine in G; restarted GMRES solves R(G) = 0 with the mat-vec R(G) - R(0), one Poisson
@@ -27,11 +28,11 @@
 // by sigma^-/sigma^+ (order and GMRES iterations degrade at sigma^-/sigma^+ >= 10). We replace
 // the mean of the fitted phi_n^- by its exact value from the divergence theorem,
 //   sum_k phi_n^-(X_k) dl_k = integral over Omega^- of f^-/sigma^- dA,
-// (the area integral by an O(h^3) cut-cell quadrature, see ComputeInteriorFlux), so the constant mode of G is fixed by the flux
-// balance itself, as in the continuous problem. The same near-null behaviour hits modes of G
-// that the grid cannot resolve (wavelength ~2 marker spacings < ~4h), so for sigma^- > sigma^+
-// GMRES therefore works on control markers spaced >= ~1.5 h (FastIimOptions), with G at the
-// other markers from the periodic spline through the control values.
+// (the area integral by an O(h^3) cut-cell quadrature, see ComputeInteriorFlux), so the constant
+// mode of G is fixed by the flux balance itself, as in the continuous problem. The same near-null
+// behaviour hits modes of G that the grid cannot resolve (wavelength ~2 marker spacings < ~4h), so
+// for sigma^- > sigma^+ GMRES therefore works on control markers spaced >= ~1.5 h (FastIimOptions),
+// with G at the other markers from the periodic spline through the control values.
 //
 // Cost per Solve: classification and fit set-up O(M + band), then (iterations + 2) Poisson
 // solves (warm or cold, see FastIimOptions::warm_start_refresh). Non-convergence throws
@@ -53,6 +54,9 @@ namespace ehd {
 struct FastIimOptions {
   GmresOptions gmres;
   double fit_radius_h = 3.0;  // WLS fit radius alpha in units of h
+  // Degree of the WLS fit of phi_n^-: 3 (cubic, default: O(h^3) derivatives, see
+  // normal_derivative_fit.h) or 2 (the reference's quadratic).
+  int fit_degree = 3;
   double band_width_h = 3.5;  // closest points are found for |d| < band_width_h * h
   // GMRES unknowns live on control markers spaced >= this many h (every k-th marker; G at the
   // others is the periodic spline through them). Markers denser than the grid resolves would

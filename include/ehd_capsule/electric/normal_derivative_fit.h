@@ -32,9 +32,11 @@ namespace ehd {
 
 class NormalDerivativeFit {
  public:
-  // radius alpha (>= 2 h and <= the classification's band width). Throws std::invalid_argument
-  // for a bad radius and std::runtime_error if a marker's fit is rank deficient.
-  void Update(const ClosedCurve& curve, const InterfaceClassification& classes, double radius);
+  // radius alpha (>= 2 h and <= the classification's band width); degree 3 (cubic where
+  // possible, the default) or 2 (the reference's quadratic). Throws std::invalid_argument for a
+  // bad radius or degree and std::runtime_error if a marker's fit is rank deficient.
+  void Update(const ClosedCurve& curve, const InterfaceClassification& classes, double radius,
+              int degree = 3);
 
   // phi_n^- and phi_eta^- (derivative along the counter-clockwise tangent) at every marker.
   // band_jump holds J at every band point (only the outside ones are read).
