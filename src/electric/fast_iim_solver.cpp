@@ -338,9 +338,33 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
     if (has_guess) {
       for (int c = 0; c < mc; ++c) x[c] = g[control_[c]];
     }
+    // Mean deflation (FastIimOptions::deflate_mean): with R_k = phi_n^-_k + c G_k - v_k/[sigma],
+    // c = sigma^+/[sigma], and sum_k phi_n^-_k dl_k = flux imposed exactly, R = 0 implies
+    // mean(G) = mu. Solving R(G) - (mean(G) - mu) = 0 instead (a consistent rank-one term) moves
+    // the near-null eigenvalue ~c of the equilibrium-density mode to ~c - 1.
+    const bool deflate = sigma_minus_ > sigma_plus_ && options_.deflate_mean;
+    const double jump_sigma = sigma_plus_ - sigma_minus_;
+    double mean_target = 0.0;
+    if (deflate) {
+      double mean_v = 0.0;
+      for (int k = 0; k < m; ++k) mean_v += arc_weight_[k] * v_[k];
+      mean_v /= perimeter_;
+      mean_target =
+          (mean_v / jump_sigma - interior_flux_ / perimeter_) / (sigma_plus_ / jump_sigma);
+    }
+    auto mean_of = [&](const double* xc) {
+      expand(xc);
+      double s = 0.0;
+      for (int k = 0; k < m; ++k) s += arc_weight_[k] * g_full_[k];
+      return s / perimeter_;
+    };
     auto apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
       out.resize(mc);
       residual(in.data(), false, out.data());
+      if (deflate) {
+        const double mean = mean_of(in.data());
+        for (int c = 0; c < mc; ++c) out[c] -= mean;
+      }
     };
     // Warm path: solve A dx = -R(x0) from dx = 0 (one Poisson solve for R(x0)), relative to the
     // |b| = |R(0)| of the last cold solve, which changes only by O(interface displacement)
@@ -352,6 +376,7 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
       Eigen::VectorXd rhs(mc), dx = Eigen::VectorXd::Zero(mc);
       residual(x.data(), true, rhs.data());
       rhs = -rhs;
+      if (deflate) rhs.array() -= mean_target - mean_of(x.data());
       r = gmres_.Solve(apply, rhs, dx, options_.gmres, reference_norm_);
       x += dx;
       ++warm_solves_;
@@ -360,6 +385,7 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
       const Eigen::VectorXd zero = Eigen::VectorXd::Zero(mc);
       residual(zero.data(), true, b.data());
       b = -b;
+      if (deflate) b.array() -= mean_target;
       r = gmres_.Solve(apply, b, x, options_.gmres);
       reference_norm_ = r.reference;
       reference_markers_ = mc;
