@@ -190,6 +190,50 @@ void AddDirichletGhostCorrection(const Grid2D& grid, const PoissonBoundaries& bc
   fold(bc.y_max, data.y_max, nx, [&](int i) { return grid.index(i, ny - 1); });
 }
 
+void AddTruncationCorrection(const Grid2D& grid, const PoissonBoundaries& bc,
+                             const std::vector<double>& phi, const std::int8_t* sides,
+                             const double* jump, const std::uint8_t* jump_known,
+                             std::vector<double>& rhs) {
+  const int nx = grid.nx, ny = grid.ny;
+  const double scale = 1.0 / (12.0 * grid.h * grid.h);
+  const bool x_periodic = bc.x_min == BoundaryKind::kPeriodic;
+  const bool y_periodic = bc.y_min == BoundaryKind::kPeriodic;
+  constexpr double kWeight[5] = {1.0, -4.0, 6.0, -4.0, 1.0};
+  // Fourth difference along one axis at cell (i, j) for the centre side sc; false if a value
+  // across the interface has no known jump.
+  auto fourth = [&](int i, int j, int sc, bool along_x, double* out) {
+    const int n = along_x ? nx : ny;
+    const bool periodic = along_x ? x_periodic : y_periodic;
+    const int c = along_x ? i : j;
+    const int centre = periodic ? c : std::clamp(c, 2, n - 3);
+    double sum = 0.0;
+    for (int q = 0; q < 5; ++q) {
+      int k = centre + q - 2;
+      if (periodic) k = (k + n) % n;
+      const std::size_t idx = along_x ? grid.index(k, j) : grid.index(i, k);
+      double value = phi[idx];
+      if (sides != nullptr && sides[idx] != sc) {
+        if (jump_known[idx] == 0) return false;
+        value += sc * jump[idx];
+      }
+      sum += kWeight[q] * value;
+    }
+    *out = sum;
+    return true;
+  };
+  const bool x_ok = nx >= 5, y_ok = ny >= 5;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t idx = grid.index(i, j);
+      const int sc = sides != nullptr ? sides[idx] : 0;
+      double total = 0.0, d4 = 0.0;
+      if (x_ok && fourth(i, j, sc, true, &d4)) total += d4;
+      if (y_ok && fourth(i, j, sc, false, &d4)) total += d4;
+      rhs[idx] += scale * total;
+    }
+  }
+}
+
 PoissonBoundaryData SampleBoundaryData(
     const Grid2D& grid, const PoissonBoundaries& bc,
     const std::function<double(double, double)>& value,

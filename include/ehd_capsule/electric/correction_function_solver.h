@@ -25,6 +25,7 @@
 // are then on the same side and no correction is made, as in the text's 5-point method.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "ehd_capsule/electric/cfm_local_cauchy.h"
@@ -41,6 +42,12 @@ struct CorrectionFunctionOptions {
   // Interface quadrature: sub-intervals of Sigma cap patch, 4 Gauss points each
   // (0 = default: 3 for the bicubic basis, 1 for the modified bilinear one as in the text).
   int interface_subintervals = 0;
+  // Deferred correction of the regular 5-point truncation (AddTruncationCorrection in
+  // fast_poisson_solver.h): after the solve, T = (delta^4_x + delta^4_y) phi / (12 h^2), values
+  // across Sigma continued with the patches' D (each irregular stencil's D evaluated at its own
+  // 5 points, averaged where patches overlap: every point a 5-wide arm reaches across Sigma is
+  // one of them), then one more Poisson solve with rhs + T. Costs one Poisson solve.
+  bool deferred_correction = false;
 };
 
 class CorrectionFunctionSolver {
@@ -73,8 +80,12 @@ class CorrectionFunctionSolver {
 
   // Fits and solves the local Cauchy problem of the stencil at grid index `index` and stores
   // C_ij in correction_[index]; false if no patch could be built or solved.
+  // If stencil_d != nullptr, also D at the stencil's 5 points (centre, then kDi/kDj order; NaN
+  // off the grid or on failure).
   bool CorrectStencil(const ClosedCurve& curve, const std::vector<double>& f, double sigma,
-                      int index, CfmLocalCauchy& cauchy);
+                      int index, CfmLocalCauchy& cauchy, double* stencil_d);
+  // Deferred correction (options_.deferred_correction): rhs_ += T from phi, solve again.
+  void DeferredCorrection(std::vector<double>& phi);
 
   Grid2D grid_;
   PoissonBoundaries bc_;
@@ -87,6 +98,10 @@ class CorrectionFunctionSolver {
   std::vector<char> near_;  // 1 if hint_ is set
   std::vector<double> rhs_;
   std::vector<double> correction_;
+  std::vector<double> stencil_d_;  // D at the 5 points of each irregular stencil (deferred corr.)
+  std::vector<double> grid_jump_, grid_jump_count_;
+  std::vector<std::uint8_t> grid_jump_known_;
+  std::vector<std::int8_t> sides_;
   std::vector<std::vector<double>> row_crossings_;
   PeriodicCubicSpline jump_value_, jump_normal_;
   std::vector<double> scratch_w_, scratch_v_;

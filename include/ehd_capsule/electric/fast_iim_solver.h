@@ -39,6 +39,7 @@
 // SolverError.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -77,6 +78,16 @@ struct FastIimOptions {
   // solve); every warm_start_refresh-th warm solve is cold again. That |b| is solver state, so
   // results then depend on the solve history (not restartable bit for bit from G alone).
   int warm_start_refresh = 0;
+  // Deferred correction of the regular 5-point truncation (AddTruncationCorrection), default
+  // on: from the second-order phi, T = (delta^4_x + delta^4_y) phi / (12 h^2) (values across the
+  // curve replaced by their same-side continuation phi -/+ J, J within 2.5 h of the curve), then
+  // L_h phi = F + C + T. sigma^+ = sigma^-: one more Poisson solve (G is data). Otherwise a
+  // second Schur (GMRES) pass with T in the data, from the first pass's G, so that G is
+  // consistent with the corrected phi (applying T with the first G only made several
+  // sigma^+ > sigma^- cases worse). The marker derivatives come from the corrected phi. Max error
+  // third order on the examples (docs/electric_solver.md sec. 5); cost +1 Poisson solve
+  // (sigma equal) or +40..50% (second GMRES pass).
+  bool deferred_correction = true;
 };
 
 class FastIimSolver {
@@ -125,6 +136,8 @@ class FastIimSolver {
   // Arc weights dl_k, perimeter and interior_flux_ (integral of f^-/sigma^- over Omega^-).
   void ComputeInteriorFlux(const ClosedCurve& curve, const PeriodicCubicSpline& fminus,
                            const PeriodicCubicSpline& fminus_xi, bool f_is_zero);
+  // Deferred correction: target += T(phi), values across the curve continued with band_jump_.
+  void AddTruncationTo(const std::vector<double>& phi, std::vector<double>& target);
   // Fills band_jump_ for g (plus the data part if with_data) and solves for phi.
   void SolveForPotential(const ClosedCurve& curve, const double* g, bool with_data,
                          std::vector<double>& phi);
@@ -140,6 +153,8 @@ class FastIimSolver {
   std::vector<double> rhs_, phi_work_;
   std::vector<double> band_data_, band_gcoef_, band_gsscoef_, band_jump_;
   std::vector<double> dn_minus_, dn_plus_, dt_minus_, dt_plus_, w_s_;
+  std::vector<double> grid_jump_;  // J at band points (deferred correction)
+  std::vector<std::uint8_t> grid_jump_known_;
   std::vector<double> scratch_;
   struct BandSample {
     int slot, k;   // band slot, spline segment

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -68,6 +69,24 @@ void AddBoundaryDataToRhs(const Grid2D& grid, const PoissonBoundaries& bc,
 // constant side data with F = 0 there leave rhs bit-for-bit unchanged.
 void AddDirichletGhostCorrection(const Grid2D& grid, const PoissonBoundaries& bc,
                                  const PoissonBoundaryData& data, std::vector<double>& rhs);
+
+// Deferred (defect) correction of the 5-point truncation error. For smooth phi the 5-point
+// operator gives L_h phi = Laplace(phi) + tau + O(h^4) with tau = (h^2/12)(phi_xxxx + phi_yyyy);
+// after a second-order solve phi^1 of L_h phi = b, re-solving L_h phi^2 = b + T with
+//   T_ij = (delta^4_x phi^1 + delta^4_y phi^1)_ij / (12 h^2),
+//   delta^4_x u_i = u_{i+2} - 4 u_{i+1} + 6 u_i - 4 u_{i-1} + u_{i-2}  (= h^4 u_xxxx + O(h^6))
+// cancels tau to O(h^4) where phi^1 is smooth. Adds T to rhs. Within 2 cells of a non-periodic
+// side the 5-point fourth difference is taken at the nearest cell that has it (cell 2 or n-3: a
+// constant extrapolation of phi_xxxx, O(h^3) there); periodic axes wrap. An axis with fewer than
+// 5 cells gets no correction. Interface (optional, sides != nullptr): sides[idx] = -1 / +1 per
+// cell; a stencil value on the other side from the cell the correction is for is replaced by its
+// continuation from that cell's side, phi(x_k) + s_c jump[x_k] (jump = phi^+_ext - phi^-_ext at
+// x_k, s_c the centre's side); if jump_known[x_k] == 0 that axis's term is dropped at that cell.
+// rhs, phi, sides, jump, jump_known: grid.size() entries. No allocation.
+void AddTruncationCorrection(const Grid2D& grid, const PoissonBoundaries& bc,
+                             const std::vector<double>& phi, const std::int8_t* sides,
+                             const double* jump, const std::uint8_t* jump_known,
+                             std::vector<double>& rhs);
 
 // Side data sampled from a function: Dirichlet sides take value(x, y) at the face midpoints,
 // Neumann sides take gradient(x, y) . outward normal there. Periodic sides are left empty.
