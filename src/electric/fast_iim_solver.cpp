@@ -105,19 +105,22 @@ void FastIimSolver::SolveForPotential(const ClosedCurve& curve, const double* g,
   }
   poisson_.Solve(rhs_, phi);
   ++poisson_solves_;
+  if (options_.deferred_correction) {
+    // phi^2 = L_h^-1 (F + C + T(phi^1, J)): affine in G like phi^1, so the Schur system below is
+    // solved for the corrected potential (warm starts and the GMRES tolerance keep their meaning).
+    AddTruncationTo(phi, rhs_);
+    poisson_.Solve(rhs_, phi);
+    ++poisson_solves_;
+  }
 }
 
 void FastIimSolver::AddTruncationTo(const std::vector<double>& phi, std::vector<double>& target) {
   // J of the last SolveForPotential at the band points it was evaluated at (all within 2.5 h of
   // the curve when deferred_correction is on).
+  // (grid_jump_known_ is set once per Solve() for the band samples.)
   const Grid2D& grid = poisson_.grid();
-  grid_jump_.assign(grid.size(), 0.0);
-  grid_jump_known_.assign(grid.size(), 0);
   const std::vector<int>& points = classes_.band_points();
-  for (const BandSample& q : band_samples_) {
-    grid_jump_[points[q.slot]] = band_jump_[q.slot];
-    grid_jump_known_[points[q.slot]] = 1;
-  }
+  for (const BandSample& q : band_samples_) grid_jump_[points[q.slot]] = band_jump_[q.slot];
   AddTruncationCorrection(grid, poisson_.boundaries(), phi, classes_.sides().data(),
                           grid_jump_.data(), grid_jump_known_.data(), target);
 }
@@ -310,6 +313,12 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
     q.c = -r1.dot(r2) / (speed2 * speed2);
     band_samples_.push_back(q);
   }
+  if (options_.deferred_correction) {
+    grid_jump_.assign(grid.size(), 0.0);
+    grid_jump_known_.assign(grid.size(), 0);
+    const std::vector<int>& points = classes_.band_points();
+    for (const BandSample& q : band_samples_) grid_jump_known_[points[q.slot]] = 1;
+  }
   for (int k = 0; k < m; ++k) {
     double w_ss = 0.0;
     w_s_[k] = 0.0;
@@ -391,61 +400,43 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
     // Warm path: solve A dx = -R(x0) from dx = 0 (one Poisson solve for R(x0)), relative to the
     // |b| = |R(0)| of the last cold solve, which changes only by O(interface displacement)
     // between time steps. Cold path: b = -R(0) (one solve), GMRES from the guess (if any).
-    // Deferred correction: a second pass of the Schur solve with T (from the first pass's phi)
-    // in the data, from the first pass's G, so that G is consistent with the corrected phi.
-    const int passes = options_.deferred_correction ? 2 : 1;
-    for (int pass = 0; pass < passes; ++pass) {
-      if (pass > 0) {
-        expand(x.data());
-        SolveForPotential(curve, g_full_.data(), true, phi_work_);
-        AddTruncationTo(phi_work_, rhs_base_);
-      }
-      const bool warm = pass == 0 && has_guess && options_.warm_start_refresh > 0 &&
-                        reference_norm_ > 0.0 && reference_markers_ == mc &&
-                        warm_solves_ < options_.warm_start_refresh;
-      GmresResult r;
-      if (warm) {
-        Eigen::VectorXd rhs(mc), dx = Eigen::VectorXd::Zero(mc);
-        residual(x.data(), true, rhs.data());
-        rhs = -rhs;
-        if (deflate) rhs.array() -= mean_target - mean_of(x.data());
-        r = gmres_.Solve(apply, rhs, dx, options_.gmres, reference_norm_);
-        x += dx;
-        ++warm_solves_;
-      } else {
-        Eigen::VectorXd b(mc);
-        const Eigen::VectorXd zero = Eigen::VectorXd::Zero(mc);
-        residual(zero.data(), true, b.data());
-        b = -b;
-        if (deflate) b.array() -= mean_target;
-        r = gmres_.Solve(apply, b, x, options_.gmres);
-        reference_norm_ = r.reference;
-        reference_markers_ = mc;
-        warm_solves_ = 0;
-      }
-      report.iterations += r.iterations;
-      report.residual = r.residual;
-      report.converged = r.converged;
-      if (!r.converged) {
-        std::ostringstream msg;
-        msg << "FastIimSolver: GMRES did not converge: " << r.iterations << " iterations, residual "
-            << r.residual << " > tolerance " << options_.gmres.tolerance
-            << " x |b| = " << options_.gmres.tolerance * r.reference
-            << " (sigma- = " << sigma_minus_ << ", sigma+ = " << sigma_plus_ << ", " << m
-            << " markers, " << mc << " control)";
-        throw SolverError(msg.str());
-      }
+    const bool warm = has_guess && options_.warm_start_refresh > 0 && reference_norm_ > 0.0 &&
+                      reference_markers_ == mc && warm_solves_ < options_.warm_start_refresh;
+    GmresResult r;
+    if (warm) {
+      Eigen::VectorXd rhs(mc), dx = Eigen::VectorXd::Zero(mc);
+      residual(x.data(), true, rhs.data());
+      rhs = -rhs;
+      if (deflate) rhs.array() -= mean_target - mean_of(x.data());
+      r = gmres_.Solve(apply, rhs, dx, options_.gmres, reference_norm_);
+      x += dx;
+      ++warm_solves_;
+    } else {
+      Eigen::VectorXd b(mc);
+      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(mc);
+      residual(zero.data(), true, b.data());
+      b = -b;
+      if (deflate) b.array() -= mean_target;
+      r = gmres_.Solve(apply, b, x, options_.gmres);
+      reference_norm_ = r.reference;
+      reference_markers_ = mc;
+      warm_solves_ = 0;
+    }
+    report.iterations = r.iterations;
+    report.residual = r.residual;
+    report.converged = r.converged;
+    if (!r.converged) {
+      std::ostringstream msg;
+      msg << "FastIimSolver: GMRES did not converge: " << r.iterations << " iterations, residual "
+          << r.residual << " > tolerance " << options_.gmres.tolerance
+          << " x |b| = " << options_.gmres.tolerance * r.reference << " (sigma- = " << sigma_minus_
+          << ", sigma+ = " << sigma_plus_ << ", " << m << " markers, " << mc << " control)";
+      throw SolverError(msg.str());
     }
     expand(x.data());
     g = g_full_;
   }
   SolveForPotential(curve, g.data(), true, phi);
-  if (options_.deferred_correction && sigma_plus_ == sigma_minus_) {
-    // G is exact data: rhs_ = F + C(G) of the solve just made; add T from phi and solve again.
-    AddTruncationTo(phi, rhs_);
-    poisson_.Solve(rhs_, phi);
-    ++poisson_solves_;
-  }
   fit_.Evaluate(phi.data(), band_jump_.data(), dn_minus_.data(), dt_minus_.data());
   ImposeInteriorFlux(interior_flux_);
   for (int k = 0; k < m; ++k) {

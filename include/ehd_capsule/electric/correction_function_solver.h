@@ -43,10 +43,14 @@ struct CorrectionFunctionOptions {
   // (0 = default: 3 for the bicubic basis, 1 for the modified bilinear one as in the text).
   int interface_subintervals = 0;
   // Deferred correction of the regular 5-point truncation (AddTruncationCorrection in
-  // fast_poisson_solver.h): after the solve, T = (delta^4_x + delta^4_y) phi / (12 h^2), values
-  // across Sigma continued with the patches' D (each irregular stencil's D evaluated at its own
-  // 5 points, averaged where patches overlap: every point a 5-wide arm reaches across Sigma is
-  // one of them), then one more Poisson solve with rhs + T. Costs one Poisson solve.
+  // fast_poisson_solver.h), off by default: after the solve, T = (delta^4_x + delta^4_y) phi /
+  // (12 h^2), values across Sigma continued with the patches' D (each irregular stencil's D at
+  // its centre and its far nodes, i.e. inside its patch, averaged where patches overlap; a
+  // 5-wide arm reaching a point with no D gets no correction on that axis), then one more
+  // Poisson solve with rhs + T. Example cfm1: 6.4e-5 / 1.4e-5 / 1.3e-6 / 1.9e-7 / 2.6e-8 at
+  // N = 40..640 (plain 3.2e-4 ... 1.2e-6). Not robust on non-circular curves (ellipse, star,
+  // biconcave: errors up to 1e-2 at some N; cause not isolated), hence off.
+  // D at the near-side stencil points (extrapolated off the patch) made cfm1 fail at N = 640.
   bool deferred_correction = false;
 };
 
@@ -80,8 +84,8 @@ class CorrectionFunctionSolver {
 
   // Fits and solves the local Cauchy problem of the stencil at grid index `index` and stores
   // C_ij in correction_[index]; false if no patch could be built or solved.
-  // If stencil_d != nullptr, also D at the stencil's 5 points (centre, then kDi/kDj order; NaN
-  // off the grid or on failure).
+  // If stencil_d != nullptr, also D at the centre and the far nodes (centre, then the 4 arms in
+  // kDi/kDj order; NaN for same-side or off-grid arms, or on failure).
   bool CorrectStencil(const ClosedCurve& curve, const std::vector<double>& f, double sigma,
                       int index, CfmLocalCauchy& cauchy, double* stencil_d);
   // Deferred correction (options_.deferred_correction): rhs_ += T from phi, solve again.

@@ -34,9 +34,13 @@
 // for sigma^- > sigma^+ GMRES therefore works on control markers spaced >= ~1.5 h (FastIimOptions),
 // with G at the other markers from the periodic spline through the control values.
 //
-// Cost per Solve: classification and fit set-up O(M + band), then (iterations + 2) Poisson
-// solves (warm or cold, see FastIimOptions::warm_start_refresh). Non-convergence throws
-// SolverError.
+// Deferred correction (FastIimOptions::deferred_correction, default on): each potential solve
+// adds the estimated 5-point truncation T = (h^2/12)(phi_xxxx + phi_yyyy) from a first solve
+// (AddTruncationCorrection), which makes the max error third order (not in the reference).
+//
+// Cost per Solve: classification and fit set-up O(M + band), then (iterations + 2) potential
+// solves, two Poisson solves each with the deferred correction (warm or cold, see
+// FastIimOptions::warm_start_refresh). Non-convergence throws SolverError.
 #pragma once
 
 #include <cstdint>
@@ -79,14 +83,13 @@ struct FastIimOptions {
   // results then depend on the solve history (not restartable bit for bit from G alone).
   int warm_start_refresh = 0;
   // Deferred correction of the regular 5-point truncation (AddTruncationCorrection), default
-  // on: from the second-order phi, T = (delta^4_x + delta^4_y) phi / (12 h^2) (values across the
-  // curve replaced by their same-side continuation phi -/+ J, J within 2.5 h of the curve), then
-  // L_h phi = F + C + T. sigma^+ = sigma^-: one more Poisson solve (G is data). Otherwise a
-  // second Schur (GMRES) pass with T in the data, from the first pass's G, so that G is
-  // consistent with the corrected phi (applying T with the first G only made several
-  // sigma^+ > sigma^- cases worse). The marker derivatives come from the corrected phi. Max error
-  // third order on the examples (docs/electric_solver.md sec. 5); cost +1 Poisson solve
-  // (sigma equal) or +40..50% (second GMRES pass).
+  // on: every potential solve for a given G becomes phi^1 = L_h^-1 (F + C), then
+  // phi = L_h^-1 (F + C + T), T = (delta^4_x + delta^4_y) phi^1 / (12 h^2) with the values across
+  // the curve replaced by their same-side continuation phi^1 -/+ J (J at the band points within
+  // 2.5 h of the curve). phi is still affine in G, so GMRES solves the Schur system of the
+  // corrected potential (G consistent with it; a guess that is the solution needs 0 iterations).
+  // Max error third order on the examples (docs/electric_solver.md sec. 5); cost: two Poisson
+  // solves per potential solve.
   bool deferred_correction = true;
 };
 
