@@ -354,10 +354,10 @@ TEST(FastIimSolver, DeferredCorrectionBeatsTable1OnExample1) {
 }
 
 TEST(FastIimSolver, DeferredCorrectionWithUnequalConductivitiesIsThirdOrder) {
-  // Example 3 (sigma+ = 10 sigma-, a source jump) and example 1 with sigma+ = 1000 sigma-: with
-  // the second Schur pass (T from the first pass in the data, G re-solved) the regular O(h^2)
-  // truncation is gone and G is consistent with it, so the order over 40 -> 160 is > 2.5 and
-  // the error well below the plain second-order solve.
+  // Example 3 (sigma+ = 10 sigma-, a source jump) and example 1 with sigma+ = 1000 sigma-: the
+  // deferred correction is inside every potential solve, so GMRES solves the Schur system of the
+  // corrected potential (G consistent with it); the regular O(h^2) truncation is gone, so the
+  // order over 40 -> 160 is > 2.5 and the error well below the plain second-order solve.
   for (const auto& [name, sp] : {std::pair<const char*, double>{"3", 10.0}, {"1", 1000.0}}) {
     const InterfaceExample e = MakeInterfaceExample(name, 1.0, sp);
     InterfaceSolveReport r160;
