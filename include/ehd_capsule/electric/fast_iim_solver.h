@@ -63,8 +63,9 @@ struct FastIimOptions {
   // normal_derivative_fit.h) or 2 (the reference's quadratic).
   int fit_degree = 3;
   double band_width_h = 3.5;  // closest points are found for |d| < band_width_h * h
-  // GMRES unknowns live on control markers spaced >= this many h (every k-th marker; G at the
-  // others is the periodic spline through them). Markers denser than the grid resolves would
+  // GMRES unknowns live on control markers spaced >= this many h of arc length (chosen walking
+  // along the curve, so bunched markers do not give close controls; G at the others is the
+  // periodic spline through them). Markers denser than the grid resolves would
   // otherwise add modes of G that barely change phi_n^-, i.e. near-null modes of the Schur
   // system for sigma^- > sigma^+.
   double min_control_spacing_h = 1.5;
