@@ -21,7 +21,7 @@ int RunIim(const std::vector<std::string>& args) {
   std::vector<int> grids = {40, 80, 160, 320};
   int markers = 0;
   bool csv = false;
-  int deferred = -1;  // -1: the solver's default (on for the IIM, off for the CFM)
+  int deferred = -1;  // -1: the solver's default (on)
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--example") {
@@ -133,7 +133,7 @@ const CommandRegistration kIim(
      "--markers defaults to a marker spacing of about 2 h of arc length.\n"
      "--[no-]deferred-correction: re-solve with the 5-point truncation T estimated from the\n"
      "first solution (FastIimOptions / CorrectionFunctionOptions::deferred_correction; default\n"
-     "on for the IIM, off for the CFM).\n",
+     "on for both).\n",
      RunIim});
 
 }  // namespace

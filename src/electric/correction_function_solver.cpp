@@ -172,7 +172,7 @@ void CorrectionFunctionSolver::JumpOfSource(const std::vector<double>& f, int i,
 
 bool CorrectionFunctionSolver::CorrectStencil(const ClosedCurve& curve,
                                               const std::vector<double>& f, double sigma, int index,
-                                              CfmLocalCauchy& cauchy, double* stencil_d) {
+                                              CfmLocalCauchy& cauchy) {
   const Grid2D& g = grid_;
   const int i = index % g.nx, j = index / g.nx;
   const char side = inside_[index];
@@ -200,19 +200,7 @@ bool CorrectionFunctionSolver::CorrectStencil(const ClosedCurve& curve,
   const auto area_points = CfmLocalCauchy::AreaPoints(stencil_patch.patch);
   double f_jump[CfmLocalCauchy::kAreaPoints] = {};
   if (!f.empty()) JumpOfSource(f, i, j, sigma, area_points.data(), f_jump);
-  if (stencil_d != nullptr) {
-    for (int q = 0; q < 5; ++q) stencil_d[q] = std::numeric_limits<double>::quiet_NaN();
-  }
   if (!cauchy.Solve(stencil_patch.patch, f_jump, samples, n_samples)) return false;
-  if (stencil_d != nullptr) {
-    stencil_d[0] = cauchy.Value(center);
-    for (int k = 0; k < 4; ++k) {
-      const int ii = i + kDi[k], jj = j + kDj[k];
-      if (ii < 0 || ii >= g.nx || jj < 0 || jj >= g.ny) continue;
-      if (inside_[g.index(ii, jj)] == side) continue;  // outside the patch: not used
-      stencil_d[k + 1] = cauchy.Value(Eigen::Vector2d(g.x(ii), g.y(jj)));
-    }
-  }
   // s_k = +1 if x_ij in Omega^- (then phi(x_k) = phi^+ = phi^-_ext + D), else -1.
   const double sign = side ? 1.0 : -1.0;
   double c = 0.0;
@@ -222,31 +210,12 @@ bool CorrectionFunctionSolver::CorrectStencil(const ClosedCurve& curve,
 }
 
 void CorrectionFunctionSolver::DeferredCorrection(std::vector<double>& phi) {
+  // T from one-sided stencils only: an axis whose 5-wide arm crosses Sigma gets no term at that
+  // cell (no jump passed), so T is O(h^2) short in a band of ~2 cells, an O(h^3) global effect.
   const Grid2D& g = grid_;
-  grid_jump_.assign(g.size(), 0.0);
-  grid_jump_count_.assign(g.size(), 0.0);
-  grid_jump_known_.assign(g.size(), 0);
   sides_.resize(g.size());
   for (std::size_t idx = 0; idx < g.size(); ++idx) sides_[idx] = inside_[idx] ? -1 : 1;
-  for (int t = 0; t < irregular_points_; ++t) {
-    const int index = irregular_[t];
-    const int i = index % g.nx, j = index / g.nx;
-    for (int q = 0; q < 5; ++q) {
-      const double d = stencil_d_[5 * static_cast<std::size_t>(t) + q];
-      if (std::isnan(d)) continue;
-      const std::size_t idx = q == 0 ? g.index(i, j) : g.index(i + kDi[q - 1], j + kDj[q - 1]);
-      grid_jump_[idx] += d;
-      grid_jump_count_[idx] += 1.0;
-    }
-  }
-  for (std::size_t idx = 0; idx < g.size(); ++idx) {
-    if (grid_jump_count_[idx] > 0.0) {
-      grid_jump_[idx] /= grid_jump_count_[idx];
-      grid_jump_known_[idx] = 1;
-    }
-  }
-  AddTruncationCorrection(g, bc_, phi, sides_.data(), grid_jump_.data(), grid_jump_known_.data(),
-                          rhs_);
+  AddTruncationCorrection(g, bc_, phi, sides_.data(), nullptr, nullptr, rhs_);
   poisson_.Solve(rhs_, phi);
 }
 
@@ -311,22 +280,19 @@ InterfaceSolveReport CorrectionFunctionSolver::Solve(const ClosedCurve& curve,
     }
   }
   irregular_points_ = static_cast<int>(irregular_.size());
-  const bool deferred = options_.deferred_correction;
-  if (deferred) stencil_d_.resize(5 * static_cast<std::size_t>(irregular_points_));
   int failed = 0;
 #pragma omp parallel num_threads(static_cast <int>(cauchy_.size())) reduction(+ : failed)
   {
     CfmLocalCauchy& cauchy = cauchy_[omp_get_thread_num()];
 #pragma omp for schedule(dynamic, 8)
     for (int t = 0; t < irregular_points_; ++t) {
-      double* stencil_d = deferred ? stencil_d_.data() + 5 * static_cast<std::size_t>(t) : nullptr;
-      if (!CorrectStencil(curve, problem.f, sigma, irregular_[t], cauchy, stencil_d)) ++failed;
+      if (!CorrectStencil(curve, problem.f, sigma, irregular_[t], cauchy)) ++failed;
     }
   }
   failed_patches_ = failed;
   for (const int idx : irregular_) rhs_[idx] += correction_[idx];
   poisson_.Solve(rhs_, phi);
-  if (deferred) DeferredCorrection(phi);
+  if (options_.deferred_correction) DeferredCorrection(phi);
 
   InterfaceSolveReport report;
   report.iterations = 0;

@@ -213,7 +213,7 @@ void AddTruncationCorrection(const Grid2D& grid, const PoissonBoundaries& bc,
       const std::size_t idx = along_x ? grid.index(k, j) : grid.index(i, k);
       double value = phi[idx];
       if (sides != nullptr && sides[idx] != sc) {
-        if (jump_known[idx] == 0) return false;
+        if (jump_known == nullptr || jump_known[idx] == 0) return false;
         value += sc * jump[idx];
       }
       sum += kWeight[q] * value;

@@ -43,15 +43,14 @@ struct CorrectionFunctionOptions {
   // (0 = default: 3 for the bicubic basis, 1 for the modified bilinear one as in the text).
   int interface_subintervals = 0;
   // Deferred correction of the regular 5-point truncation (AddTruncationCorrection in
-  // fast_poisson_solver.h), off by default: after the solve, T = (delta^4_x + delta^4_y) phi /
-  // (12 h^2), values across Sigma continued with the patches' D (each irregular stencil's D at
-  // its centre and its far nodes, i.e. inside its patch, averaged where patches overlap; a
-  // 5-wide arm reaching a point with no D gets no correction on that axis), then one more
-  // Poisson solve with rhs + T. Example cfm1: 6.4e-5 / 1.4e-5 / 1.3e-6 / 1.9e-7 / 2.6e-8 at
-  // N = 40..640 (plain 3.2e-4 ... 1.2e-6). Not robust on non-circular curves (ellipse, star,
-  // biconcave: errors up to 1e-2 at some N; cause not isolated), hence off.
-  // D at the near-side stencil points (extrapolated off the patch) made cfm1 fail at N = 640.
-  bool deferred_correction = false;
+  // fast_poisson_solver.h), default on: after the solve, T = (delta^4_x + delta^4_y) phi /
+  // (12 h^2) wherever the 5-wide arm along an axis stays on the cell's side of Sigma (no term on
+  // an axis that crosses it), then one more Poisson solve with rhs + T. Example cfm1, N =
+  // 40..640: 1.9e-4 / 2.9e-5 / 3.3e-6 / 4.4e-7 / 5.8e-8 (plain 3.2e-4 ... 1.2e-6; song2019
+  // Table 1: 2.3e-4 ... 1.4e-6), third order on the ellipse, star and biconcave curves too.
+  // (Continuing the arms across Sigma with the patches' D, as the IIM does with its J, was
+  // erratic: errors up to 1e-2 at some N on the non-circular curves.)
+  bool deferred_correction = true;
 };
 
 class CorrectionFunctionSolver {
@@ -84,10 +83,8 @@ class CorrectionFunctionSolver {
 
   // Fits and solves the local Cauchy problem of the stencil at grid index `index` and stores
   // C_ij in correction_[index]; false if no patch could be built or solved.
-  // If stencil_d != nullptr, also D at the centre and the far nodes (centre, then the 4 arms in
-  // kDi/kDj order; NaN for same-side or off-grid arms, or on failure).
   bool CorrectStencil(const ClosedCurve& curve, const std::vector<double>& f, double sigma,
-                      int index, CfmLocalCauchy& cauchy, double* stencil_d);
+                      int index, CfmLocalCauchy& cauchy);
   // Deferred correction (options_.deferred_correction): rhs_ += T from phi, solve again.
   void DeferredCorrection(std::vector<double>& phi);
 
@@ -102,9 +99,6 @@ class CorrectionFunctionSolver {
   std::vector<char> near_;  // 1 if hint_ is set
   std::vector<double> rhs_;
   std::vector<double> correction_;
-  std::vector<double> stencil_d_;  // D at the 5 points of each irregular stencil (deferred corr.)
-  std::vector<double> grid_jump_, grid_jump_count_;
-  std::vector<std::uint8_t> grid_jump_known_;
   std::vector<std::int8_t> sides_;
   std::vector<std::vector<double>> row_crossings_;
   PeriodicCubicSpline jump_value_, jump_normal_;

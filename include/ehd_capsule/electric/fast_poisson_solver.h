@@ -81,7 +81,8 @@ void AddDirichletGhostCorrection(const Grid2D& grid, const PoissonBoundaries& bc
 // 5 cells gets no correction. Interface (optional, sides != nullptr): sides[idx] = -1 / +1 per
 // cell; a stencil value on the other side from the cell the correction is for is replaced by its
 // continuation from that cell's side, phi(x_k) + s_c jump[x_k] (jump = phi^+_ext - phi^-_ext at
-// x_k, s_c the centre's side); if jump_known[x_k] == 0 that axis's term is dropped at that cell.
+// x_k, s_c the centre's side); if jump_known[x_k] == 0 (or jump and jump_known are null: no jump
+// known anywhere) that axis's term is dropped at that cell.
 // rhs, phi, sides, jump, jump_known: grid.size() entries. No allocation.
 void AddTruncationCorrection(const Grid2D& grid, const PoissonBoundaries& bc,
                              const std::vector<double>& phi, const std::int8_t* sides,
