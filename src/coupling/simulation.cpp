@@ -44,6 +44,7 @@ struct Simulation::Impl {
   Eigen::Matrix2Xd electric_density;  // F_E of the last solve (empty without field)
   Eigen::Matrix2Xd markers_at_last_solve;
   long last_solve_step = -1;
+  long redistributions = 0;    // numerics.redistribute_markers events (drops)
   double solved_field = -1.0;  // |E| of the last solve
   std::vector<double> dl;
   std::vector<double> empty;
@@ -374,6 +375,7 @@ void Simulation::Step() {
   } catch (const std::exception& e) {
     fail(std::string("membrane curve is degenerate: ") + e.what());
   }
+  if (scene_.numerics.redistribute_markers > 0.0) RedistributeBunchedMarkers();
   const ShapeDiagnostics d = MeasureShape(m.curve);
   state_.area_drift = RelativeAreaDrift(d.area, m.initial_area);
   if (!std::isfinite(d.area) || std::abs(state_.area_drift) > scene_.numerics.area_drift_limit) {
@@ -435,8 +437,11 @@ std::string Simulation::Pipeline() const {
       << ", " << (scene_.has_shear() ? "moving shear walls" : "closed box at rest") << '\n';
   out << "  5. markers: interpolate u, "
       << (scene_.numerics.integrator == MarkerTimeScheme::kAdamsBashforth2 ? "Adams-Bashforth 2"
-                                                                           : "forward Euler")
-      << '\n';
+                                                                           : "forward Euler");
+  if (scene_.numerics.redistribute_markers > 0.0) {
+    out << ", re-spaced evenly when max/min spacing > " << scene_.numerics.redistribute_markers;
+  }
+  out << '\n';
   return out.str();
 }
 
@@ -519,6 +524,52 @@ class Reader {
 };
 
 }  // namespace
+
+long Simulation::marker_redistributions() const { return impl_->redistributions; }
+
+void Simulation::RedistributeBunchedMarkers() {
+  // Drops (numerics.redistribute_markers = r): when the largest / smallest segment exceeds r,
+  // re-space the markers evenly in the curve's (chord-length) parameter from marker 0, which stays
+  // where it is (it carries tt_phase). The AB2 velocity history and the electric warm start G are
+  // carried over by the curve's periodic spline; the potential is re-solved at the next step.
+  Impl& m = *impl_;
+  const int n = static_cast<int>(m.X.cols());
+  double shortest = m.curve.SegmentArcLength(0), longest = shortest;
+  for (int k = 1; k < n; ++k) {
+    const double l = m.curve.SegmentArcLength(k);
+    shortest = std::min(shortest, l);
+    longest = std::max(longest, l);
+  }
+  if (!(longest > scene_.numerics.redistribute_markers * shortest)) return;
+  const double s0 = m.curve.knot(0), period = m.curve.period();
+  auto new_parameter = [&](int k) { return s0 + period * k / n; };
+  std::vector<double> values(n);
+  auto resample = [&](std::vector<double>& v) {
+    const PeriodicCubicSpline f = m.curve.FitScalar(v);
+    for (int k = 0; k < n; ++k) v[k] = f.Value(new_parameter(k));
+  };
+  if (m.has_previous_velocity) {
+    for (int c = 0; c < 2; ++c) {
+      for (int k = 0; k < n; ++k) values[k] = m.U_previous(c, k);
+      resample(values);
+      for (int k = 0; k < n; ++k) m.U_previous(c, k) = values[k];
+    }
+  }
+  if (m.electric) {
+    values = m.electric->jump_normal_derivative();
+    if (static_cast<int>(values.size()) == n) {
+      resample(values);
+      m.electric->set_jump_normal_derivative(values);
+    }
+    m.last_solve_step = -1;  // F_E at the old markers no longer applies
+  }
+  Eigen::Matrix2Xd x(2, n);
+  x.col(0) = m.X.col(0);
+  for (int k = 1; k < n; ++k) x.col(k) = m.curve.At(new_parameter(k)).position;
+  m.X = x;
+  m.curve.Update(m.X);
+  ++m.redistributions;
+}
 
 void Simulation::Save(const std::string& path) const {
   const Impl& m = *impl_;

@@ -352,6 +352,19 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
                                    "watchdog on the lattice Mach number |u|/c_s");
     s.numerics.threads =
         static_cast<int>(n.Integer("threads", 0, 256, 0, "LBM OpenMP threads, 0 = OpenMP default"));
+    s.numerics.redistribute_markers =
+        n.Number("redistribute_markers", Closed(0.0, 1e6), 0.0,
+                 "drops: re-space the markers evenly when max/min spacing exceeds this; 0 = off");
+    if (s.numerics.redistribute_markers != 0.0 && s.numerics.redistribute_markers <= 1.0) {
+      throw SceneError("scene " + origin + ": numerics.redistribute_markers = " +
+                       std::to_string(s.numerics.redistribute_markers) +
+                       " is out of range: 0 (off) or a spacing ratio > 1");
+    }
+    if (s.numerics.redistribute_markers > 0.0 && s.membrane != MembraneKind::kDrop) {
+      throw SceneError("scene " + origin +
+                       ": numerics.redistribute_markers needs membrane: drop (a capsule's "
+                       "markers are material points of its elastic reference)");
+    }
     n.RejectUnknown();
   }
   top.RejectUnknown();

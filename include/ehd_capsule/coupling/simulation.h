@@ -77,7 +77,9 @@ class Simulation {
   // Electric potential on the grid (empty without field).
   const std::vector<double>& potential() const;
   std::string Pipeline() const;  // the assembled modules, one per line
-  void Reset();                  // back to the initial state (pending changes dropped)
+  // How often a drop's markers were re-spaced (numerics.redistribute_markers) since construction.
+  long marker_redistributions() const;
+  void Reset();  // back to the initial state (pending changes dropped)
 
   // Checkpoint/restart: a binary file with a version tag and the scene text; Restore requires a
   // Simulation built from the same scene and continues bit-for-bit.
@@ -85,6 +87,8 @@ class Simulation {
   void Restore(const std::string& path);
 
  private:
+  void RedistributeBunchedMarkers();  // numerics.redistribute_markers (drops)
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
   Scene scene_;

@@ -65,8 +65,13 @@ struct SceneNumerics {
   long max_steps = 1000000;            // hard cap for `ehd_sim run`
   double t_end = 10.0;                 // default run length (dimensionless time)
   double area_drift_limit = 0.05;      // watchdog: |A/A0 - 1|
-  double max_mach = 0.1;               // watchdog: max |u| / c_s
-  int threads = 0;                     // LBM OpenMP threads (0: OpenMP default)
+  // Drops only (0 = off): when the largest / smallest marker spacing exceeds this ratio, the
+  // markers are re-spaced evenly along the curve (marker 0 stays). A drop's markers are not
+  // material (isotropic tension), they drift with the tank-treading flow and bunch, and gaps of
+  // several h let the immersed boundary leak (docs/coupling.md).
+  double redistribute_markers = 0;
+  double max_mach = 0.1;  // watchdog: max |u| / c_s
+  int threads = 0;        // LBM OpenMP threads (0: OpenMP default)
 };
 
 struct Scene {
