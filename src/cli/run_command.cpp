@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <memory>
 
 #include "command.h"
@@ -26,15 +27,17 @@ const char* kUsage =
     "  --set key=value   override a scene key (nested: geometry.shape=ellipse); repeatable\n"
     "  --steps N         stop after N steps\n"
     "  --until T         stop at time T (units of 1/k with shear, else the scene's time unit)\n"
-    "  --until-steady TOL  stop when D_xy and the inclination (rad) changed by less than TOL\n"
-    "                    over the last unit of time (default end: numerics.t_end)\n"
+    "  --until-steady TOL  stop when, over the last unit of time, D_xy changed by less than\n"
+    "                    TOL relative (TOL max(D_xy, 1e-3)) and theta by less than TOL pi\n"
+    "                    (default end: numerics.t_end)\n"
     "  --csv FILE        time series: step,t,dxy,inclination,area,tt_phase,... (every step,\n"
     "                    or every --csv-every N steps)\n"
     "  --vtk DIR         ParaView frames (fluid .vti, membrane .vtp, .pvd) every --vtk-every N\n"
     "  --checkpoint FILE --checkpoint-every N   write a checkpoint every N steps (and at the end)\n"
     "  --restart FILE    continue bit-for-bit from a checkpoint of the same scene\n"
     "Exit status 0 on success, 1 if the simulation stopped on an error (the message names the\n"
-    "step and the quantity), 2 on a usage error.\n";
+    "step and the quantity) or at the step cap numerics.max_steps before its end time, 2 on a\n"
+    "usage error.\n";
 
 int RunScene(const std::vector<std::string>& args) {
   std::string scene_name, csv_path, vtk_dir, checkpoint_path, restart_path;
@@ -106,7 +109,11 @@ int RunScene(const std::vector<std::string>& args) {
               << ", t = " << sim.state().time << '\n';
   }
   const double t_end = until >= 0 ? until : scene.numerics.t_end;
-  const long max_steps = steps > 0 ? sim.state().step + steps : scene.numerics.max_steps;
+  // An explicit --until T is not capped; the scene's t_end and --until-steady are capped by
+  // numerics.max_steps, and reaching the cap before t_end is reported as a failure.
+  const long max_steps = steps > 0    ? sim.state().step + steps
+                         : until >= 0 ? std::numeric_limits<long>::max()
+                                      : scene.numerics.max_steps;
   const char* unit = scene.has_shear() ? "1/k" : sim.units().time_unit.c_str();
   if (!quiet) {
     if (steps > 0)
@@ -114,7 +121,9 @@ int RunScene(const std::vector<std::string>& args) {
     else
       std::cout << "running to t = " << t_end << " (" << unit << ")"
                 << (steady_tol > 0 ? ", or until steady to " + std::to_string(steady_tol) : "")
-                << ", at most " << max_steps << " steps\n";
+                << (until >= 0 ? std::string()
+                               : ", at most " + std::to_string(max_steps) + " steps")
+                << '\n';
   }
 
   std::unique_ptr<TimeSeriesCsv> csv;
@@ -175,6 +184,7 @@ int RunScene(const std::vector<std::string>& args) {
   if (csv && sim.state().step % csv_every != 0) csv->Write(sim);
   if (!checkpoint_path.empty()) sim.Save(checkpoint_path);
   progress("final: ");
+  const bool capped = steps <= 0 && !steady && sim.state().time < t_end - 1e-12;
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long taken = sim.state().step - first_step;
@@ -195,6 +205,12 @@ int RunScene(const std::vector<std::string>& args) {
     std::cout << "VTK: " << vtk_dir << "/fluid.pvd, " << vtk_dir << "/membrane.pvd ("
               << vtk->frames() << " frames)\n";
   if (!checkpoint_path.empty()) std::cout << "checkpoint: " << checkpoint_path << '\n';
+  if (capped) {
+    std::cerr << "ehd_sim run: stopped at the step cap numerics.max_steps = " << max_steps
+              << " at t = " << sim.state().time << " before t = " << t_end
+              << " (raise numerics.max_steps, or give --until T)\n";
+    return 1;
+  }
   return 0;
 }
 

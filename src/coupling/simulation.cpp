@@ -18,6 +18,7 @@
 #include "ehd_capsule/geometry/initial_shapes.h"
 #include "ehd_capsule/ib/immersed_boundary.h"
 #include "ehd_capsule/ib/marker_update.h"
+#include "ehd_capsule/ib/sawtooth_filter.h"
 #include "ehd_capsule/ib/viscosity_indicator.h"
 #include "ehd_capsule/lbm/lattice_boltzmann_2d.h"
 #include "ehd_capsule/membrane/membrane_model.h"
@@ -30,6 +31,7 @@ struct Simulation::Impl {
   std::unique_ptr<MembraneModel> membrane;
   std::unique_ptr<LeakyDielectricSolver> electric;  // only with a field
   std::unique_ptr<ViscosityIndicator> viscosity;    // only with V != 1
+  SawtoothFilter sawtooth;                          // numerics.marker_filter_every
 
   MembraneParameters membrane_parameters;
   ClosedCurve curve;
@@ -328,6 +330,9 @@ void Simulation::Step() {
   }
   m.U_previous = m.U;
   m.has_previous_velocity = true;
+  if (scene_.numerics.marker_filter_every > 0 && step % scene_.numerics.marker_filter_every == 0) {
+    m.sawtooth.Apply(m.X);
+  }
   if (scene_.has_shear()) WrapCurveIntoDomain(grid_, m.X);
 
   // Watchdogs and diagnostics.

@@ -1,15 +1,20 @@
 #include "ehd_capsule/coupling/steady_state.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace ehd {
 
-SteadyStateMonitor::SteadyStateMonitor(double tolerance, double window)
-    : tolerance_(tolerance), window_(window) {
+SteadyStateMonitor::SteadyStateMonitor(double tolerance, double window, double dxy_floor)
+    : tolerance_(tolerance), window_(window), dxy_floor_(dxy_floor) {
   if (!(tolerance > 0.0)) {
     throw std::invalid_argument("steady-state tolerance = " + std::to_string(tolerance) +
+                                ": accepted > 0");
+  }
+  if (!(dxy_floor > 0.0)) {
+    throw std::invalid_argument("steady-state D_xy floor = " + std::to_string(dxy_floor) +
                                 ": accepted > 0");
   }
   if (!(window > 0.0)) {
@@ -39,8 +44,9 @@ bool SteadyStateMonitor::Update(double time, double dxy, double inclination) {
   const double t_cut = time - window_;
   for (auto* q : {&dxy_min_, &dxy_max_, &theta_min_, &theta_max_}) Expire(*q, t_cut);
   if (first_time_ > t_cut) return steady_ = false;
-  return steady_ = (dxy_max_.front().value - dxy_min_.front().value < tolerance_ &&
-                    theta_max_.front().value - theta_min_.front().value < tolerance_);
+  const double dxy_scale = std::max(std::abs(dxy), dxy_floor_);
+  return steady_ = (dxy_max_.front().value - dxy_min_.front().value < tolerance_ * dxy_scale &&
+                    theta_max_.front().value - theta_min_.front().value < tolerance_ * M_PI);
 }
 
 }  // namespace ehd

@@ -355,6 +355,9 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
     s.numerics.redistribute_markers =
         n.Number("redistribute_markers", Closed(0.0, 1e6), 0.0,
                  "drops: re-space the markers evenly when max/min spacing exceeds this; 0 = off");
+    s.numerics.marker_filter_every =
+        static_cast<int>(n.Integer("marker_filter_every", 0, 1000000000, 100,
+                                   "smooth the markers' sawtooth mode every n steps; 0 = off"));
     if (s.numerics.redistribute_markers != 0.0 && s.numerics.redistribute_markers <= 1.0) {
       throw SceneError("scene " + origin + ": numerics.redistribute_markers = " +
                        std::to_string(s.numerics.redistribute_markers) +

@@ -70,6 +70,10 @@ struct SceneNumerics {
   // material (isotropic tension), they drift with the tank-treading flow and bunch, and gaps of
   // several h let the immersed boundary leak (docs/coupling.md).
   double redistribute_markers = 0;
+  // Every n steps the markers are smoothed by the five-point sawtooth filter
+  // (ib/sawtooth_filter.h) that removes the odd-even marker mode the immersed boundary cannot
+  // damp; 0 = off. Bias on the shapes: docs/coupling.md ("Long runs").
+  int marker_filter_every = 100;
   double max_mach = 0.1;  // watchdog: max |u| / c_s
   int threads = 0;        // LBM OpenMP threads (0: OpenMP default)
 };
