@@ -32,7 +32,8 @@
 // mode of G is fixed by the flux balance itself, as in the continuous problem. The same near-null
 // behaviour hits modes of G that the grid cannot resolve (wavelength ~2 marker spacings < ~4h), so
 // for sigma^- > sigma^+ GMRES therefore works on control markers spaced >= ~1.5 h (FastIimOptions),
-// with G at the other markers from the periodic spline through the control values.
+// with G at the other markers from the periodic spline through the control values. For
+// sigma^+ > sigma^- every marker is a control (no near-null modes there).
 //
 // Deferred correction (FastIimOptions::deferred_correction, default on): each potential solve
 // adds the estimated 5-point truncation T = (h^2/12)(phi_xxxx + phi_yyyy) from a first solve
@@ -63,11 +64,11 @@ struct FastIimOptions {
   // normal_derivative_fit.h) or 2 (the reference's quadratic).
   int fit_degree = 3;
   double band_width_h = 3.5;  // closest points are found for |d| < band_width_h * h
-  // GMRES unknowns live on control markers spaced >= this many h of arc length (chosen walking
-  // along the curve, so bunched markers do not give close controls; G at the others is the
-  // periodic spline through them). Markers denser than the grid resolves would
-  // otherwise add modes of G that barely change phi_n^-, i.e. near-null modes of the Schur
-  // system for sigma^- > sigma^+.
+  // sigma^- > sigma^+ only: GMRES unknowns live on control markers spaced >= this many h of
+  // arc length (chosen walking along the curve, so bunched markers do not give close controls;
+  // G at the others is the periodic spline through them). Markers denser than the grid
+  // resolves would otherwise add modes of G that barely change phi_n^-, i.e. near-null modes of
+  // the Schur system for sigma^- > sigma^+.
   double min_control_spacing_h = 1.5;
   // sigma^- > sigma^+ only. The exact interior flux fixes the arc-weighted mean of the residual,
   // hence the mean of G (mu = (mean(v)/[sigma] - flux/P) / (sigma^+/[sigma])); the operator's
@@ -92,6 +93,25 @@ struct FastIimOptions {
   // Max error third order on the examples (docs/electric_solver.md sec. 5); cost: two Poisson
   // solves per potential solve.
   bool deferred_correction = true;
+  // Guarantees (no wrong answer returned as a success; each failure is a SolverError naming the
+  // marker, the quantity and the remedy):
+  // - before solving, every marker must have |kappa| h <= max_curvature_h (a tip tighter than
+  //   the grid cannot be represented by the jump expansion about one closest point) and
+  //   |kappa| l <= pi/2 over each marker segment l (markers too sparse for the curve);
+  // - after solving, the marker-scale (index fourth-difference) content of G must stay below
+  //   max_marker_oscillation of max(|G|, |phi_n^+-|): a spike at a few markers is the signature
+  //   of an unresolved tip;
+  // - for sigma^-/sigma^+ >= verify_min_ratio, where the near-null mode of the Schur system
+  //   (the curve's equilibrium density, eigenvalue -sigma^+/(sigma^- - sigma^+)) amplifies the
+  //   discretisation error, a second solve on the grid coarsened twice (warm-started from G)
+  //   gives the Richardson estimate |X_h - X_2h| / 3 of the error of G and phi_n^+ (second
+  //   order); above verify_tolerance (relative to max(|G|, |phi_n^+-|)) Solve throws. The
+  //   estimate is in InterfaceSolveReport::estimated_error. Costs ~1/4 of a solve. A grid that
+  //   cannot be coarsened (odd or < 32 cells) cannot be verified: SolverError too.
+  double max_curvature_h = 1.0;
+  double max_marker_oscillation = 0.1;
+  double verify_min_ratio = 10.0;  // infinity: never verify
+  double verify_tolerance = 0.05;
 };
 
 class FastIimSolver {
@@ -140,6 +160,15 @@ class FastIimSolver {
   // Arc weights dl_k, perimeter and interior_flux_ (integral of f^-/sigma^- over Omega^-).
   void ComputeInteriorFlux(const ClosedCurve& curve, const PeriodicCubicSpline& fminus,
                            const PeriodicCubicSpline& fminus_xi, bool f_is_zero);
+  // Resolution check before a solve (max_curvature_h, marker spacing); throws SolverError.
+  void CheckResolution(const ClosedCurve& curve) const;
+  // Marker-scale oscillation of g after a solve (max_marker_oscillation); throws SolverError.
+  void CheckMarkerOscillation(const ClosedCurve& curve, const std::vector<double>& g) const;
+  // Richardson estimate from a solve on the grid coarsened twice (verify_min_ratio); returns
+  // the relative estimate (-1 if the grid cannot be coarsened), throws SolverError above
+  // verify_tolerance.
+  double Verify(const ClosedCurve& curve, const InterfaceProblem& problem,
+                const std::vector<double>& g);
   // Deferred correction: target += T(phi), values across the curve continued with band_jump_.
   void AddTruncationTo(const std::vector<double>& phi, std::vector<double>& target);
   // Fills band_jump_ for g (plus the data part if with_data) and solves for phi.
@@ -178,6 +207,8 @@ class FastIimSolver {
   double reference_norm_ = 0.0;  // |R(0)| of the last cold solve
   int reference_markers_ = 0;
   int warm_solves_ = 0;
+  std::unique_ptr<FastIimSolver> coarse_;  // Verify(): the grid coarsened twice
+  std::vector<double> coarse_g_, coarse_phi_;
 };
 
 }  // namespace ehd

@@ -31,6 +31,10 @@ struct InterfaceSolveReport {
   double residual = 0.0;   // final 2-norm of the scaled flux residual over the markers
   bool converged = false;  // residual <= tolerance (always true when no GMRES was needed)
   double solve_ms = 0.0;   // wall time of the whole Solve() call
+  // A-posteriori estimate of the relative error of [phi_n] and phi_n^+ at the markers (from a
+  // solve on the grid coarsened twice, FastIimOptions::verify_min_ratio); -1 when not verified
+  // (sigma^-/sigma^+ below that ratio).
+  double estimated_error = -1.0;
 };
 
 }  // namespace ehd
