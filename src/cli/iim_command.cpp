@@ -1,6 +1,7 @@
 // `ehd_sim iim`: convergence tables of the fast IIM on the manufactured interface problems of
 // song2019 sec. 2.3.5 / 2.5 (and an ellipse and a five-petal star): per grid size N the L-inf
 // error against the exact solution, error ratio, observed order, GMRES iterations and wall ms.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -25,6 +26,7 @@ int RunIim(const std::vector<std::string>& args) {
   int deferred = -1;  // -1: the solver's default (on)
   bool checks = true;
   double gmres_tolerance = -1.0;  // -1: the solver's default
+  double marker_spacing = -1.0;   // in h; -1: the example's default (about 2 h)
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--example") {
@@ -51,6 +53,9 @@ int RunIim(const std::vector<std::string>& args) {
       deferred = 1;
     } else if (a == "--no-deferred-correction") {
       deferred = 0;
+    } else if (a == "--marker-spacing") {
+      marker_spacing = ParseDouble(a, OptionValue(args, i));
+      if (!(marker_spacing > 0.0)) throw UsageError("--marker-spacing must be > 0");
     } else if (a == "--gmres-tolerance") {
       gmres_tolerance = ParseDouble(a, OptionValue(args, i));
       if (!(gmres_tolerance > 0.0 && gmres_tolerance < 1.0)) {
@@ -88,7 +93,11 @@ int RunIim(const std::vector<std::string>& args) {
   int refused = 0;
   for (int n : grids) {
     const Grid2D grid = e.MakeGrid(n);
-    const int m = markers > 0 ? markers : e.DefaultMarkers(n);
+    int m = markers > 0 ? markers : e.DefaultMarkers(n);
+    if (marker_spacing > 0.0) {
+      // DefaultMarkers spaces markers about 2 h apart.
+      m = std::max(8, static_cast<int>(std::lround(e.DefaultMarkers(n) * 2.0 / marker_spacing)));
+    }
     const ClosedCurve curve(e.Markers(m));
     const InterfaceProblem problem = SampleInterfaceProblem(e, grid, curve);
     std::vector<double> phi;
@@ -159,14 +168,16 @@ int RunIim(const std::vector<std::string>& args) {
 
 const CommandRegistration kIim(
     {"iim", "convergence tables of the fast IIM / CFM on the interface examples",
-     "usage: ehd_sim iim [--example 1|2|3|3a|3b|4|cfm1|cfm2|ellipse|star|biconcave]\n"
+     "usage: ehd_sim iim [--example 1|2|3|3a|3b|4|cfm1|cfm2|ellipse|star|star_tight|biconcave]\n"
      "                   [--method iim|cfm] [--sigma-minus S] [--sigma-plus S]\n"
      "                   [--grids 40,80,160,320]\n"
-     "                   [--markers M] [--[no-]deferred-correction] [--no-checks]\n"
+     "                   [--markers M | --marker-spacing S] [--[no-]deferred-correction]\n"
+     "                   [--no-checks]\n"
      "                   [--gmres-tolerance TOL] [--csv]\n"
      "Solves the example on N x N grids of [-1,1]^2 and prints per N the L-inf error against\n"
      "the exact solution, the error ratio, observed order, GMRES iterations and ms per solve.\n"
-     "--markers defaults to a marker spacing of about 2 h of arc length.\n"
+     "--markers defaults to a marker spacing of about 2 h of arc length; --marker-spacing S\n"
+     "sets it to about S h.\n"
      "The fast IIM refuses a grid that does not resolve the curve or whose answer it cannot\n"
      "verify (FastIimOptions: max_curvature_h, max_marker_oscillation, verify_min_ratio; the\n"
      "row says why, the exit status is then 1); 'est. error' is its a-posteriori estimate of the\n"

@@ -384,8 +384,23 @@ void Simulation::Step() {
   const ShapeDiagnostics d = MeasureShape(m.curve);
   state_.area_drift = RelativeAreaDrift(d.area, m.initial_area);
   if (!std::isfinite(d.area) || std::abs(state_.area_drift) > scene_.numerics.area_drift_limit) {
+    // The usual cause is a gap between markers through which the immersed boundary leaks:
+    // name the spacing, and for a drop the cure (its markers are not material and bunch).
+    double smallest = 1e300, largest = 0.0;
+    for (int k = 0; k < markers; ++k) {
+      const double l = m.curve.SegmentArcLength(k);
+      smallest = std::min(smallest, l);
+      largest = std::max(largest, l);
+    }
+    std::string hint = "; marker spacing " + Fmt(smallest) + " .. " + Fmt(largest) + " h";
+    if (scene_.membrane == MembraneKind::kDrop && scene_.numerics.redistribute_markers == 0.0) {
+      hint += " (a drop's markers drift along its surface and bunch, leaving gaps the flow leaks "
+              "through: set numerics.redistribute_markers = 2)";
+    } else if (largest > 2.0) {
+      hint += " (gaps > 2 h leak: raise M)";
+    }
     fail("enclosed area drifted by " + Fmt(100.0 * state_.area_drift) + "% (limit " +
-         Fmt(100.0 * scene_.numerics.area_drift_limit) + "%, numerics.area_drift_limit)");
+         Fmt(100.0 * scene_.numerics.area_drift_limit) + "%, numerics.area_drift_limit)" + hint);
   }
 
   state_.step = step;

@@ -60,7 +60,8 @@ bool IsExample3(const std::string& name) { return name == "3" || name == "3a" ||
 }  // namespace
 
 std::vector<std::string> InterfaceExampleNames() {
-  return {"1", "2", "3", "3a", "3b", "4", "cfm1", "cfm2", "ellipse", "star", "biconcave"};
+  return {"1",    "2",    "3",       "3a",   "3b",         "4",
+          "cfm1", "cfm2", "ellipse", "star", "star_tight", "biconcave"};
 }
 
 InterfaceExample MakeInterfaceExample(const std::string& name) {
@@ -120,6 +121,15 @@ InterfaceExample MakeInterfaceExample(const std::string& name) {
     e.description = "five-petal star r=0.5+0.1 sin(5t) at (0.02,0.01), smooth phi+- (ours)";
     e.curve = [](double t) {
       const double r = 0.5 + 0.1 * std::sin(5 * t);
+      return Vec(0.02 + r * std::cos(t), 0.01 + r * std::sin(t));
+    };
+    SetSmoothPair(e);
+  } else if (name == "star_tight") {
+    e.description =
+        "five-petal star r=0.5+0.18 sin(5t) at (0.02,0.01), troughs of curvature radius 0.0245 "
+        "(h at N = 82), smooth phi+- (ours)";
+    e.curve = [](double t) {
+      const double r = 0.5 + 0.18 * std::sin(5 * t);
       return Vec(0.02 + r * std::cos(t), 0.01 + r * std::sin(t));
     };
     SetSmoothPair(e);

@@ -24,6 +24,8 @@
 //   "ellipse" (ours) ellipse centre (0.05, -0.03), semi-axes 0.6 x 0.35 rotated by 0.3 rad;
 //         phi^- = sin(2x) cos(3y) + 1, phi^+ = x y + exp((x - y)/2).
 //   "star" (ours) five-petal star r = 0.5 + 0.1 sin(5 theta) about (0.02, 0.01); same phi.
+//   "star_tight" (ours) the same with r = 0.5 + 0.18 sin(5 theta): troughs of curvature radius
+//         0.0245, tighter than the grid for N < 82 (the solver's resolution checks).
 //   "biconcave" (ours) red-cell profile x = R cos t, y = (R/2) sin t (0.207 + 2.003 cos^2 t
 //         - 1.123 cos^4 t) (Evans-Fung), R = 0.7, about (0.02, 0.01); same phi. The dimple is
 //         only ~0.1 thick (2.5 h at N = 40), so fit and band reach across it.
@@ -61,7 +63,7 @@ struct InterfaceExample {
 };
 
 // Known names: "1", "2", "3", "3a" (= 3, sigma^+ = 10), "3b" (= 3, sigma^+ = 100), "4", "cfm1",
-// "cfm2", "ellipse", "star", "biconcave". Throws std::invalid_argument for an unknown name (listing
+// "cfm2", "ellipse", "star", "star_tight", "biconcave". Throws std::invalid_argument for an unknown name (listing
 // them).
 InterfaceExample MakeInterfaceExample(const std::string& name);
 // Same with the given conductivities (> 0; f and v follow from the exact phi for them).
