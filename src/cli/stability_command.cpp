@@ -1,5 +1,6 @@
 // ehd_sim stability: the extreme cases, each of which must either run stably or stop early with
 // a clear error (never a silent NaN).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,9 +23,11 @@ const char* kUsage =
     "than the grid, a capsule touching the walls. Each runs to a physical horizon, t = T\n"
     "(default 100, the scene's time unit), or until steady (D_xy and theta steady to TOL over a\n"
     "unit of time, relative as in `run --until-steady`; default 1e-4). Outcomes:\n"
-    "  steady     reached a steady state (at the time shown)\n"
+    "  steady     reached a steady state (at the time shown), or at T D_xy within +-0.5% and\n"
+    "             theta within +-0.002 pi of their means over the second half\n"
     "  periodic   bounded oscillation at T: the D_xy range of the last quarter of the run is\n"
-    "             no larger than 1.1x that of the quarter before (tumbling, swinging)\n"
+    "             within that of the quarter before (25% margin); its period (tumbling,\n"
+    "             swinging)\n"
     "  unsettled  reached T neither steady nor bounded-periodic (still drifting or growing)\n"
     "  stopped    a watchdog or solver error stopped it (the step and the quantity)\n"
     "  rejected   refused at set-up (the reason)\n"
@@ -61,7 +64,7 @@ int Stability(const std::vector<std::string>& args) {
       {"sigma_r = 1/1000", {"sigma_r=0.001", "Ca_E=0.3"}},
       {"eps_r = 1/10", {"eps_r=0.1", "Ca_E=0.3"}},
       {"eps_r = 10", {"eps_r=10", "Ca_E=0.3"}},
-      {"Ca_E = 5", {"Ca_E=5"}},
+      {"Ca_E = 5", {"electric.max_Ca_E=5", "Ca_E=5"}},
       {"Ca = 0.4", {"Ca=0.4"}},
       {"E_b = 0.5", {"E_b=0.5"}},
       {"tau = 0.505", {"numerics.tau=0.505"}},
@@ -84,7 +87,7 @@ int Stability(const std::vector<std::string>& args) {
       Simulation sim(LoadScene(scene_name, o));
       SteadyStateMonitor monitor(steady_tol);
       // D_xy samples (t, D) every 1/40 of a time unit for the periodic test.
-      std::vector<double> ts, ds;
+      std::vector<double> ts, ds, thetas;
       const auto start = std::chrono::steady_clock::now();
       try {
         while (sim.state().time < until - 1e-12) {
@@ -93,6 +96,7 @@ int Stability(const std::vector<std::string>& args) {
           if (ts.empty() || st.time >= ts.back() + 0.025) {
             ts.push_back(st.time);
             ds.push_back(st.dxy);
+            thetas.push_back(st.inclination);
           }
           if (monitor.Update(st.time, st.dxy, st.inclination)) {
             outcome = "steady";
@@ -100,24 +104,65 @@ int Stability(const std::vector<std::string>& args) {
           }
         }
         if (outcome.empty()) {
-          // Ranges of D over the third and the last quarter of the run.
-          double lo3 = 1e300, hi3 = -1e300, lo4 = 1e300, hi4 = -1e300;
+          // At the horizon: the band over the second half (the long-run criterion: D within
+          // +-0.5 % of its mean, theta within +-0.002 pi), else a bounded oscillation (the D
+          // range of the last quarter within that of the third, 25 % margin).
           const double t_end = sim.state().time;
+          double d_mean = 0.0, th_mean = 0.0;
+          int count = 0;
           for (std::size_t i = 0; i < ts.size(); ++i) {
+            if (ts[i] < 0.5 * t_end) continue;
+            d_mean += ds[i];
+            th_mean += thetas[i];
+            ++count;
+          }
+          d_mean /= std::max(count, 1);
+          th_mean /= std::max(count, 1);
+          double d_band = 0.0, th_band = 0.0;
+          double lo3 = 1e300, hi3 = -1e300, lo4 = 1e300, hi4 = -1e300;
+          int crossings = 0;
+          double first_cross = -1.0, last_cross = -1.0;
+          for (std::size_t i = 0; i < ts.size(); ++i) {
+            if (ts[i] < 0.5 * t_end) continue;
+            d_band = std::max(d_band, std::abs(ds[i] - d_mean));
+            th_band = std::max(th_band, std::abs(thetas[i] - th_mean));
             if (ts[i] >= 0.75 * t_end) {
               lo4 = std::min(lo4, ds[i]);
               hi4 = std::max(hi4, ds[i]);
-            } else if (ts[i] >= 0.5 * t_end) {
+            } else {
               lo3 = std::min(lo3, ds[i]);
               hi3 = std::max(hi3, ds[i]);
             }
+            if (i > 0 && ds[i - 1] < d_mean && ds[i] >= d_mean) {
+              if (first_cross < 0) first_cross = ts[i];
+              last_cross = ts[i];
+              ++crossings;
+            }
           }
-          const bool bounded = hi4 - lo4 <= 1.1 * (hi3 - lo3) && hi4 <= hi3 + 0.1 * (hi3 - lo3) &&
-                               lo4 >= lo3 - 0.1 * (hi3 - lo3);
-          outcome = bounded ? "periodic" : "unsettled";
-          message = "D_xy range " + std::to_string(lo4) + " .. " + std::to_string(hi4) +
-                    " over the last quarter (" + std::to_string(lo3) + " .. " +
-                    std::to_string(hi3) + " over the third)";
+          const double d_rel = d_band / std::max(std::abs(d_mean), 1e-12);
+          const double margin = 0.25 * (hi3 - lo3);
+          char text[256];
+          if (d_rel <= 0.005 && th_band <= 0.002 * M_PI) {
+            outcome = "steady";
+            std::snprintf(text, sizeof text,
+                          "at t = %g: D_xy within +-%.2f%% and theta within +-%.4f pi of their "
+                          "means over the second half",
+                          t_end, 100.0 * d_rel, th_band / M_PI);
+          } else if (crossings >= 3 && hi4 - lo4 <= hi3 - lo3 + margin && hi4 <= hi3 + margin &&
+                     lo4 >= lo3 - margin) {
+            outcome = "periodic";
+            std::snprintf(text, sizeof text,
+                          "bounded oscillation: D_xy %.5f .. %.5f over the last quarter, period "
+                          "%.3g",
+                          lo4, hi4, (last_cross - first_cross) / (crossings - 1));
+          } else {
+            outcome = "unsettled";
+            std::snprintf(text, sizeof text,
+                          "D_xy %.5f .. %.5f over the last quarter, %.5f .. %.5f over the third "
+                          "(band +-%.2f%%, theta +-%.4f pi)",
+                          lo4, hi4, lo3, hi3, 100.0 * d_rel, th_band / M_PI);
+          }
+          message = text;
         }
       } catch (const SimulationError& e) {
         outcome = "stopped";
