@@ -394,14 +394,42 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
         since_last + curve.SegmentArcLength(m - 1) < 0.75 * min_spacing) {
       control_.pop_back();
     }
-    const bool every_marker = static_cast<int>(control_.size()) == m;
-    const int mc = static_cast<int>(control_.size());
+    // Fourier basis in arc length (FastIimOptions::control_basis): G(s) = c_0 + sum_j
+    // (a_j cos(2 pi j s / P) + b_j sin(2 pi j s / P)), j <= K, with as many unknowns as the
+    // controls above would have; the residual is projected on the same basis with the arc
+    // weights (Galerkin). The span does not depend on which marker is first nor on the marker
+    // direction (s -> s + c rotates each cos/sin pair, s -> P - s flips the sines).
+    const bool fourier =
+        options_.control_basis == ControlBasis::kFourier && static_cast<int>(control_.size()) < m;
+    int mc = static_cast<int>(control_.size());
+    if (fourier) {
+      const int k_max = std::max(2, (mc - 1) / 2);
+      mc = 2 * k_max + 1;
+      basis_.resize(m, mc);
+      double arc = 0.0;
+      const double period = perimeter_;
+      for (int k = 0; k < m; ++k) {
+        basis_(k, 0) = 1.0;
+        for (int j = 1; j <= k_max; ++j) {
+          const double angle = 2.0 * M_PI * j * arc / period;
+          basis_(k, 2 * j - 1) = std::cos(angle);
+          basis_(k, 2 * j) = std::sin(angle);
+        }
+        arc += curve.SegmentArcLength(k);
+      }
+      weighted_basis_ = basis_;
+      for (int k = 0; k < m; ++k) weighted_basis_.row(k) *= arc_weight_[k] / perimeter_;
+      gram_.compute(weighted_basis_.transpose() * basis_);
+    }
+    const bool every_marker = !fourier && mc == m;
     if (mc < 4) {
       throw std::invalid_argument("FastIimSolver: only " + std::to_string(mc) +
                                   " control markers (curve too small for the grid?)");
     }
-    control_knots_.resize(mc);
-    for (int c = 0; c < mc; ++c) control_knots_[c] = curve.knot(control_[c]);
+    if (!fourier) {
+      control_knots_.resize(mc);
+      for (int c = 0; c < mc; ++c) control_knots_[c] = curve.knot(control_[c]);
+    }
     g_full_.resize(m);
     r_full_.resize(m);
     auto expand = [&](const double* xc) {
@@ -409,19 +437,44 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
         std::copy(xc, xc + m, g_full_.begin());
         return;
       }
+      if (fourier) {
+        Eigen::Map<Eigen::VectorXd>(g_full_.data(), m) =
+            basis_ * Eigen::Map<const Eigen::VectorXd>(xc, mc);
+        return;
+      }
       scratch_.assign(xc, xc + mc);
       control_spline_.Fit(control_knots_, curve.period(), scratch_);
       for (int k = 0; k < m; ++k) g_full_[k] = control_spline_.Value(curve.knot(k));
     };
+    auto restrict_to_unknowns = [&](const double* full, double* rc) {
+      if (fourier) {
+        Eigen::Map<Eigen::VectorXd>(rc, mc) =
+            weighted_basis_.transpose() * Eigen::Map<const Eigen::VectorXd>(full, m);
+      } else {
+        for (int c = 0; c < mc; ++c) rc[c] = full[control_[c]];
+      }
+    };
     auto residual = [&](const double* xc, bool with_data, double* rc) {
       expand(xc);
       Residual(curve, g_full_.data(), with_data, r_full_.data());
-      for (int c = 0; c < mc; ++c) rc[c] = r_full_[control_[c]];
+      restrict_to_unknowns(r_full_.data(), rc);
     };
+    // The restriction of a residual that is 1 at every marker (the deflation's shift).
+    Eigen::VectorXd restricted_one(mc);
+    {
+      std::vector<double> ones(m, 1.0);
+      restrict_to_unknowns(ones.data(), restricted_one.data());
+    }
     Eigen::VectorXd x = Eigen::VectorXd::Zero(mc);
     const bool has_guess = static_cast<int>(g.size()) == m;
     if (has_guess) {
-      for (int c = 0; c < mc; ++c) x[c] = g[control_[c]];
+      if (fourier) {
+        // Weighted least-squares coefficients of the guess.
+        x = gram_.solve(weighted_basis_.transpose() *
+                        Eigen::Map<const Eigen::VectorXd>(g.data(), m));
+      } else {
+        for (int c = 0; c < mc; ++c) x[c] = g[control_[c]];
+      }
     }
     // Mean deflation (FastIimOptions::deflate_mean): with R_k = phi_n^-_k + c G_k - v_k/[sigma],
     // c = sigma^+/[sigma], and sum_k phi_n^-_k dl_k = flux imposed exactly, R = 0 implies
@@ -447,8 +500,7 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
       out.resize(mc);
       residual(in.data(), false, out.data());
       if (deflate) {
-        const double mean = mean_of(in.data());
-        for (int c = 0; c < mc; ++c) out[c] -= mean;
+        out -= mean_of(in.data()) * restricted_one;
       }
     };
     // Warm path: solve A dx = -R(x0) from dx = 0 (one Poisson solve for R(x0)), relative to the
@@ -461,7 +513,7 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
       Eigen::VectorXd rhs(mc), dx = Eigen::VectorXd::Zero(mc);
       residual(x.data(), true, rhs.data());
       rhs = -rhs;
-      if (deflate) rhs.array() -= mean_target - mean_of(x.data());
+      if (deflate) rhs -= (mean_target - mean_of(x.data())) * restricted_one;
       r = gmres_.Solve(apply, rhs, dx, options_.gmres, reference_norm_);
       x += dx;
       ++warm_solves_;
@@ -470,7 +522,7 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
       const Eigen::VectorXd zero = Eigen::VectorXd::Zero(mc);
       residual(zero.data(), true, b.data());
       b = -b;
-      if (deflate) b.array() -= mean_target;
+      if (deflate) b -= mean_target * restricted_one;
       r = gmres_.Solve(apply, b, x, options_.gmres);
       reference_norm_ = r.reference;
       reference_markers_ = mc;

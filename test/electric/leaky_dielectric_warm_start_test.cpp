@@ -91,7 +91,9 @@ TEST(LeakyDielectricWarmStart, ExtrapolatedGuessIsSecondOrderInTheTimeStep) {
 
 TEST(LeakyDielectricWarmStart, TimedSolvesNeedFewerIterationsAndAgreeWithColdSolves) {
   // Markers moving ~0.01 h per solve (dt = 1/60): after two timed solves the extrapolated start
-  // leaves at most 1 GMRES iteration where the plain warm start (untimed Solve) needs more, and
+  // leaves 0-2 GMRES iterations (0, 0, 1, 2, 1, 1 with the Fourier basis of G, 0, 0, 1, 1, 1, 1
+  // with spline controls: the least-squares projection of the guess on the moved curve's basis
+  // costs an iteration now and then), fewer in all than the plain warm start (untimed Solve), and
   // every result agrees with a cold solve to the GMRES tolerance (1e-7 relative to |b|, i.e.
   // differences ~1e-6 of max |G|).
   const double dt = 1.0 / 60;
@@ -110,7 +112,7 @@ TEST(LeakyDielectricWarmStart, TimedSolvesNeedFewerIterationsAndAgreeWithColdSol
               1e-5 * MaxAbs(cold.jump_normal_derivative()))
         << "solve " << s;
     if (s >= 2) {
-      EXPECT_LE(it_timed, 1) << "solve " << s;
+      EXPECT_LE(it_timed, 2) << "solve " << s;
       timed_iterations += it_timed;
       untimed_iterations += it_untimed;
       cold_iterations += it_cold;

@@ -44,6 +44,7 @@
 // FastIimOptions::warm_start_refresh). Non-convergence throws SolverError.
 #pragma once
 
+#include <Eigen/Dense>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -56,6 +57,14 @@
 #include "ehd_capsule/geometry/closed_curve.h"
 
 namespace ehd {
+
+// How G is represented when there are fewer GMRES unknowns than markers (sigma^- > sigma^+ with
+// markers denser than min_control_spacing_h): kFourier (default), a Fourier series in arc length
+// with as many terms as there would be controls, residual projected on it with the arc weights
+// (Galerkin): the discrete problem does not depend on the first marker nor on the marker
+// direction; kSplineControls, the periodic spline through control markers chosen from marker
+// 0 (the previous method, kept for comparison).
+enum class ControlBasis { kFourier, kSplineControls };
 
 struct FastIimOptions {
   GmresOptions gmres;
@@ -70,6 +79,7 @@ struct FastIimOptions {
   // resolves would otherwise add modes of G that barely change phi_n^-, i.e. near-null modes of
   // the Schur system for sigma^- > sigma^+.
   double min_control_spacing_h = 1.5;
+  ControlBasis control_basis = ControlBasis::kFourier;
   // sigma^- > sigma^+ only. The exact interior flux fixes the arc-weighted mean of the residual,
   // hence the mean of G (mu = (mean(v)/[sigma] - flux/P) / (sigma^+/[sigma])); the operator's
   // near-null mode (the equilibrium density of the curve, eigenvalue ~ -sigma^+/sigma^-, a
@@ -199,6 +209,8 @@ class FastIimSolver {
   std::vector<double> g_second_;
   std::vector<int> control_;  // marker indices of the GMRES unknowns
   std::vector<double> control_knots_, g_full_, r_full_;
+  Eigen::MatrixXd basis_, weighted_basis_;  // ControlBasis::kFourier: M x unknowns
+  Eigen::LDLT<Eigen::MatrixXd> gram_;
   PeriodicCubicSpline control_spline_;
   std::vector<double> arc_weight_;  // dl_k at the markers
   double perimeter_ = 0.0;
