@@ -405,6 +405,29 @@ std::vector<std::string> ListScenes() {
   return names;
 }
 
+// yaml-cpp keeps both pairs of a repeated key and lookups return the first, so a scene that
+// sets a key twice would silently ignore the second value: refuse it, naming both lines.
+void RejectDuplicateKeys(const YAML::Node& node, const std::string& prefix,
+                         const std::string& origin) {
+  if (node.IsSequence()) {
+    for (const auto& item : node) RejectDuplicateKeys(item, prefix, origin);
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::map<std::string, int> first_line;
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    const std::string key = it->first.IsScalar() ? it->first.Scalar() : std::string("?");
+    const int line = it->first.Mark().line + 1;
+    const auto [seen, inserted] = first_line.emplace(key, line);
+    if (!inserted) {
+      throw SceneError("scene " + origin + ": key '" + prefix + key + "' is given twice (lines " +
+                       std::to_string(seen->second) + " and " + std::to_string(line) +
+                       "); keep one");
+    }
+    RejectDuplicateKeys(it->second, prefix + key + ".", origin);
+  }
+}
+
 Scene ParseScene(const std::string& yaml_text, const std::vector<std::string>& overrides,
                  const std::string& origin) {
   YAML::Node root;
@@ -415,6 +438,7 @@ Scene ParseScene(const std::string& yaml_text, const std::vector<std::string>& o
   }
   if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
   if (!root.IsMap()) throw SceneError("scene " + origin + ": expected a block of key: value lines");
+  RejectDuplicateKeys(root, "", origin);
   for (const auto& o : overrides) ApplyOverride(root, o);
   Scene scene = Validate(root, origin);
   if (scene.name.empty()) scene.name = "inline";

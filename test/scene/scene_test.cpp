@@ -55,6 +55,15 @@ TEST(Scene, UnknownKeyIsNamed) {
   ExpectSceneError(kMinimalCapsule, {"geometry.radius=2"}, {"'geometry.radius'", "unknown"});
 }
 
+TEST(Scene, DuplicateKeyIsRefusedWithBothLines) {
+  // yaml-cpp would keep the first value; the second must not be dropped silently. kMinimalCapsule
+  // starts with an empty line, so "Ca: 0.05" is line 3; the appended copy is line 13.
+  ExpectSceneError(std::string(kMinimalCapsule) + "Ca: 0.2\n", {},
+                   {"'Ca'", "twice", "lines 3 and 13"});
+  ExpectSceneError(std::string(kMinimalCapsule) + "numerics:\n  tau: 1\n  tau: 2\n", {},
+                   {"'numerics.tau'", "twice"});
+}
+
 TEST(Scene, MissingKeyIsNamed) {
   std::string text = kMinimalCapsule;
   text.replace(text.find("N: 32\n"), 6, "");
