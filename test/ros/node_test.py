@@ -121,12 +121,22 @@ class NodeTest(unittest.TestCase):
         self.assertIsNotNone(m, "Ca change never showed")
 
     def test_4_refuses_out_of_range(self):
+        from rosgraph_msgs.msg import Log
+        logs = []
+        sub = rospy.Subscriber("/rosout", Log, lambda m: logs.append(m.msg), queue_size=100)
         last = self.rec.snapshot()[-1]
+        # 100 is far above the scene's range and above the old slider limit (20), which
+        # dynamic_reconfigure clamped to silently: the refusal must name what was asked for.
+        self.client.update_configuration({"Ca_E": 100.0})
         self.client.update_configuration({"Ca_E": -0.5})
         import time
         time.sleep(1.0)
+        sub.unregister()
+        self.assertTrue(any("refused Ca_E = 100" in m for m in logs),
+                        "refusal of Ca_E = 100 not logged with the value asked for: %s" % logs)
         msgs = self.rec.snapshot()
         self.assertTrue(all(m.ca_e >= 0.0 for m in msgs), "a negative Ca_E was applied")
+        self.assertTrue(all(m.ca_e <= 5.0 for m in msgs), "Ca_E = 100 was applied")
         cfg = self.client.get_configuration(timeout=10)
         self.assertGreaterEqual(cfg["Ca_E"], 0.0, "refused value still shown as set")
         self.assertGreater(msgs[-1].step, last.step, "node stopped after a refused value")
