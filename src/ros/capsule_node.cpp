@@ -47,8 +47,33 @@ CapsuleNode::CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   OpenBag();
   if (bag_open_) Record("scene", scene_msg, StampNow());
 
-  ROS_INFO_STREAM("ehd_capsule: scene '" << scene_name_ << "'\n" << sim_->Pipeline());
-  if (max_steps_ > 0) ROS_INFO("ehd_capsule: will stop after %ld steps", max_steps_);
+  ROS_INFO_STREAM("ehd_capsule: scene '" << scene_name_ << "'\n"
+                                         << DescribeUnits(scene_, sim_->units())
+                                         << sim_->Pipeline());
+  WarnIfLarge();
+  if (max_steps_ > 0) {
+    ROS_INFO("ehd_capsule: will stop after %ld steps (t = %g %s)", max_steps_,
+             max_steps_ * sim_->units().dt, sim_->units().time_unit.c_str());
+  }
+}
+
+void CapsuleNode::WarnIfLarge() const {
+  // Estimates from this machine kind's measured costs (docs/validation_ehd.md sec. 5,
+  // docs/lbm.md): ~250 bytes of fluid state per cell (populations, moments, force, viscosity,
+  // potential), and ~18 ns per cell and step for the whole coupled step on one core.
+  const double cells = static_cast<double>(scene_.N) * scene_.N;
+  const double bytes = 250.0 * cells;
+  const double seconds_per_step = 18e-9 * cells;
+  const double steps_per_unit = sim_->units().steps_per_time_unit;
+  const double seconds_per_unit = seconds_per_step * steps_per_unit;
+  if (bytes > 1e9 || seconds_per_unit > 600.0) {
+    ROS_WARN(
+        "ehd_capsule: large run: N = %d needs about %.2g GB and %.2g s per step; one time unit "
+        "(%s) is %.3g steps, about %.3g h of wall time. Lower N (set:=\"{N: ...}\") for a live "
+        "view.",
+        scene_.N, bytes / 1e9, seconds_per_step, sim_->units().time_unit.c_str(), steps_per_unit,
+        seconds_per_unit / 3600.0);
+  }
 }
 
 CapsuleNode::~CapsuleNode() { CloseBag(); }
@@ -74,6 +99,7 @@ void CapsuleNode::ReadParameters() {
   pnh_.param("record", record_, false);
   pnh_.param<std::string>("bag", bag_path_, "ehd_capsule.bag");
   pnh_.param("advance_steps", advance_steps_, 1);
+  pnh_.param("progress_period", progress_period_, 5.0);
   nh_.param("/use_sim_time", use_sim_time_, false);
 
   // Scene overrides: ~set is a dictionary of top-level scene keys, e.g. {Ca: 0.1, N: 64}.
@@ -103,6 +129,18 @@ void CapsuleNode::ReadParameters() {
           throw std::invalid_argument("~set/" + it->first + ": only numbers, booleans and strings");
       }
       overrides_.push_back(it->first + "=" + value.str());
+    }
+  }
+  // ~start_Ca_E / ~start_Ca (the launch files' Ca_E and Ca arguments; < 0 or unset: the scene's
+  // value) override the scene like ~set. Not ~Ca_E / ~Ca: those are dynamic_reconfigure's own
+  // and stay on a running master from one launch to the next.
+  for (const char* key : {"Ca_E", "Ca"}) {
+    double v = -1.0;
+    pnh_.param(std::string("start_") + key, v, -1.0);
+    if (v >= 0.0) {
+      std::ostringstream value;
+      value << v;
+      overrides_.push_back(std::string(key) + "=" + value.str());
     }
   }
   // Write the effective settings back so `rosparam get` shows what runs (turtlesim does too).
@@ -293,6 +331,22 @@ void CapsuleNode::StepOnce() {
   }
 }
 
+void CapsuleNode::PrintProgress(bool force) {
+  if (progress_period_ <= 0.0 && !force) return;
+  const ros::WallTime now = ros::WallTime::now();
+  if (!force && (now - last_progress_).toSec() < progress_period_) return;
+  const SimulationState& s = sim_->state();
+  const double wall = (now - last_progress_).toSec();
+  const double rate = wall > 0.0 ? (s.step - last_progress_step_) / wall : 0.0;
+  ROS_INFO(
+      "ehd_capsule: step %ld  t = %.4g %s  D_xy = %.5f  theta/pi = %.4f  area drift = "
+      "%.2e  %.0f steps/s",
+      s.step, s.time, sim_->units().time_unit.c_str(), s.dxy, s.inclination / M_PI, s.area_drift,
+      rate);
+  last_progress_ = now;
+  last_progress_step_ = s.step;
+}
+
 void CapsuleNode::PublishState() {
   const ros::Time stamp = StampNow();
   const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
@@ -364,12 +418,13 @@ void CapsuleNode::PublishDiagnostics(bool force) {
 }
 
 int CapsuleNode::Run() {
-  rate_window_start_ = last_diag_ = ros::WallTime::now();
+  rate_window_start_ = last_diag_ = last_progress_ = run_start_ = ros::WallTime::now();
   ros::WallTime next_step_time = ros::WallTime::now();
   while (ros::ok()) {
     ros::spinOnce();
     ApplyPendingRequests();
     PublishDiagnostics(false);
+    if (run_state_ == RunState::kRunning) PrintProgress(false);
     if (run_state_ == RunState::kFinished) break;
     const bool may_step = run_state_ == RunState::kRunning ||
                           (run_state_ == RunState::kPaused && advance_remaining_ > 0);
@@ -390,6 +445,16 @@ int CapsuleNode::Run() {
     }
   }
   PublishDiagnostics(true);
+  {
+    const SimulationState& st = sim_->state();
+    const double wall = (ros::WallTime::now() - run_start_).toSec();
+    ROS_INFO(
+        "ehd_capsule: summary: %s after %ld steps, t = %.4g %s: D_xy = %.5f, theta/pi = "
+        "%.4f, area drift = %.2e; %.1f s wall (%.0f steps/s)",
+        run_state_ == RunState::kFailed ? "stopped on an error" : "ran", st.step, st.time,
+        sim_->units().time_unit.c_str(), st.dxy, st.inclination / M_PI, st.area_drift, wall,
+        wall > 0 ? st.step / wall : 0.0);
+  }
   CloseBag();
   return 0;
 }

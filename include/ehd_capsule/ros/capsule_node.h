@@ -57,6 +57,11 @@ class CapsuleNode {
   void StepOnce();
   void PublishState();
   void PublishDiagnostics(bool force);
+  // One console line (step, t, D_xy, theta, area drift, steps/s) every ~progress_period wall
+  // seconds while running (0: never), and a summary at the end of Run().
+  void PrintProgress(bool force);
+  // Warns with the memory and time estimate when the scene is too large to watch live.
+  void WarnIfLarge() const;
   void Fail(const std::string& reason);
   ros::Time StampNow() const;
   template <typename M>
@@ -74,7 +79,10 @@ class CapsuleNode {
   double force_arrow_scale_ = 1.0;
   bool velocity_arrows_ = false;
   int velocity_stride_ = 8;
-  double max_step_rate_ = 0.0;  // steps per wall second, 0: as fast as possible
+  double max_step_rate_ = 0.0;    // steps per wall second, 0: as fast as possible
+  double progress_period_ = 5.0;  // wall seconds between console progress lines, 0: none
+  ros::WallTime last_progress_, run_start_;
+  long last_progress_step_ = 0;
   bool record_ = false;
   std::string bag_path_;
   bool use_sim_time_ = false;
