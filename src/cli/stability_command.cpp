@@ -65,7 +65,7 @@ int Stability(const std::vector<std::string>& args) {
       {"eps_r = 1/10", {"eps_r=0.1", "Ca_E=0.3"}},
       {"eps_r = 10", {"eps_r=10", "Ca_E=0.3"}},
       {"Ca_E = 5", {"electric.max_Ca_E=5", "Ca_E=5"}},
-      {"Ca = 0.4", {"Ca=0.4"}},
+      {"Ca = 0.4", {"max_Ca=10", "Ca=0.4"}},
       {"E_b = 0.5", {"E_b=0.5"}},
       {"tau = 0.505", {"numerics.tau=0.505"}},
       {"V = 10", {"V=10"}},

@@ -219,8 +219,9 @@ void Simulation::SetCa(double ca) {
     throw std::invalid_argument("Ca = " + Fmt(ca) + ": scene " + scene_.name +
                                 " has no shear flow (flow: none); accepted: none");
   }
-  if (!(ca >= 0.0 && ca <= 10.0)) {
-    throw std::invalid_argument("Ca = " + Fmt(ca) + " is out of range: accepted [0, 10]");
+  if (!(ca >= 0.0 && ca <= scene_.max_Ca)) {
+    throw std::invalid_argument("Ca = " + Fmt(ca) + " is out of range: accepted [0, " +
+                                Fmt(scene_.max_Ca) + "] (max_Ca, the scene's measured limit)");
   }
   const double k = ShearRateForCa(units_, ca);
   const double mach = k * units_.half_width / kLatticeSoundSpeed;

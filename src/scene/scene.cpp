@@ -275,11 +275,18 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
     s.Ca =
         top.Number("Ca", LeftOpen(0.0, 10.0), std::nullopt, "capillary number mu k a / " + tension);
     s.Re = top.Number("Re", LeftOpen(0.0, 100.0), std::nullopt, "Reynolds number rho k a^2 / mu");
+    s.max_Ca = top.Number("max_Ca", LeftOpen(0.0, 10.0), 10.0,
+                          "largest Ca accepted at run time (the scene's measured limit)");
+    if (s.Ca > s.max_Ca) {
+      top.Fail("'Ca'", "= " + FormatNumber(s.Ca) + " is out of range: accepted (0, " +
+                           FormatNumber(s.max_Ca) + "] (max_Ca)");
+    }
     top.Forbid("Oh", "Oh sets the time scale only without shear (flow: none); use Ca and Re");
   } else {
     s.Oh = top.Number("Oh", LeftOpen(0.0, 100.0), std::nullopt,
                       "Ohnesorge number mu / sqrt(rho a " + tension + ")");
     top.Forbid("Ca", "there is no shear rate with flow: none (use Oh)");
+    top.Forbid("max_Ca", "there is no shear rate with flow: none");
     top.Forbid("Re", "there is no shear rate with flow: none (use Oh)");
   }
   if (s.membrane == MembraneKind::kCapsule) {

@@ -86,6 +86,7 @@ struct Scene {
   std::vector<std::string> overrides;
 
   double Ca = 0.0;
+  double max_Ca = 10.0;  // SetCa accepts [0, max_Ca] (and below the wall Mach limit)
   double Re = 0.0;
   double Oh = 0.0;
   double E_b = 0.0;
