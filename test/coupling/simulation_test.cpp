@@ -137,6 +137,16 @@ TEST(Simulation, SetCaAndSetCaETakeEffectAtTheNextStep) {
   EXPECT_THROW(sim.SetCaE(-0.1), std::invalid_argument);
   EXPECT_THROW(sim.SetCaE(5.5), std::invalid_argument);
   EXPECT_THROW(sim.SetCa(-1), std::invalid_argument);
+  // The scene's measured live limit (max_Ca) bounds SetCa and the scene's own Ca.
+  Simulation limited(ParseScene(kTinyCapsule, {"max_Ca=0.15"}));
+  EXPECT_NO_THROW(limited.SetCa(0.15));
+  try {
+    limited.SetCa(0.2);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("max_Ca"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ParseScene(kTinyCapsule, {"max_Ca=0.05"}), SceneError);  // its Ca = 0.1
   Simulation no_field(ParseScene(kTinyCapsule));
   try {
     no_field.SetCaE(0.3);
