@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 #include <vector>
 
 #include "command.h"
@@ -17,7 +18,7 @@ namespace {
 
 const char* kUsage =
     "usage: ehd_sim stability [--scene NAME] [--until T] [--steady-tolerance TOL]\n"
-    "                         [--set key=value ...]\n\n"
+    "                         [--max-steps N] [--cases TEXT] [--set key=value ...]\n\n"
     "Runs the extreme cases on SCENE (default shear_field): sigma_r = 1000 and 1/1000,\n"
     "eps_r = 1/10 and 10, Ca_E = 5, Ca = 0.4, E_b = 0.5, tau near 1/2, V = 10, markers coarser\n"
     "than the grid, a capsule touching the walls. Each runs to a physical horizon, t = T\n"
@@ -31,8 +32,11 @@ const char* kUsage =
     "  unsettled  reached T neither steady nor bounded-periodic (still drifting or growing)\n"
     "  stopped    a watchdog or solver error stopped it (the step and the quantity)\n"
     "  rejected   refused at set-up (the reason)\n"
-    "Only 'steady' and 'periodic' are stable. Exit status 1 if any case produced a non-finite\n"
-    "state without an error.\n";
+    "  capped     reached --max-steps (default 2000000) before T: a case whose time step is\n"
+    "             tiny (tau near 1/2); the line says how far it got\n"
+    "Only 'steady' and 'periodic' are stable. --cases TEXT runs only the cases whose label\n"
+    "contains TEXT (comma-separated alternatives). Exit status 1 if any case produced a\n"
+    "non-finite state without an error.\n";
 
 struct Case {
   const char* label;
@@ -42,6 +46,8 @@ struct Case {
 int Stability(const std::vector<std::string>& args) {
   std::string scene_name = "shear_field";
   double until = 100.0, steady_tol = 1e-4;
+  long max_steps = 2000000;
+  std::vector<std::string> only;
   std::vector<std::string> base;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -51,13 +57,22 @@ int Stability(const std::vector<std::string>& args) {
       until = ParseDouble(a, OptionValue(args, i));
     else if (a == "--steady-tolerance")
       steady_tol = ParseDouble(a, OptionValue(args, i));
-    else if (a == "--set")
+    else if (a == "--max-steps")
+      max_steps = ParseLong(a, OptionValue(args, i));
+    else if (a == "--cases") {
+      std::string list = OptionValue(args, i), item;
+      std::istringstream in(list);
+      while (std::getline(in, item, ',')) {
+        if (!item.empty()) only.push_back(item);
+      }
+    } else if (a == "--set")
       base.push_back(OptionValue(args, i));
     else
       throw UsageError("unknown option '" + a + "'");
   }
   if (!(until > 0.0)) throw UsageError("--until must be > 0");
   if (!(steady_tol > 0.0)) throw UsageError("--steady-tolerance must be > 0");
+  if (max_steps < 1) throw UsageError("--max-steps must be >= 1");
   const std::vector<Case> cases = {
       {"reference", {}},
       {"sigma_r = 1000", {"sigma_r=1000", "Ca_E=0.3"}},
@@ -78,6 +93,11 @@ int Stability(const std::vector<std::string>& args) {
               "D_xy", "theta/pi", "area drift", "Mach", "ms/step");
   bool silent_nan = false;
   for (const Case& c : cases) {
+    if (!only.empty()) {
+      bool wanted = false;
+      for (const auto& text : only) wanted |= std::string(c.label).find(text) != std::string::npos;
+      if (!wanted) continue;
+    }
     std::vector<std::string> o = base;
     o.insert(o.end(), c.overrides.begin(), c.overrides.end());
     std::string outcome, message;
@@ -90,7 +110,7 @@ int Stability(const std::vector<std::string>& args) {
       std::vector<double> ts, ds, thetas;
       const auto start = std::chrono::steady_clock::now();
       try {
-        while (sim.state().time < until - 1e-12) {
+        while (sim.state().time < until - 1e-12 && sim.state().step < max_steps) {
           sim.Step();
           const SimulationState& st = sim.state();
           if (ts.empty() || st.time >= ts.back() + 0.025) {
@@ -102,6 +122,12 @@ int Stability(const std::vector<std::string>& args) {
             outcome = "steady";
             break;
           }
+        }
+        if (outcome.empty() && sim.state().time < until - 1e-12) {
+          outcome = "capped";
+          message = "--max-steps " + std::to_string(max_steps) +
+                    " reached at t = " + std::to_string(sim.state().time) + " < " +
+                    std::to_string(until);
         }
         if (outcome.empty()) {
           // At the horizon: the band over the second half (the long-run criterion: D within
