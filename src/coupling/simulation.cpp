@@ -31,7 +31,8 @@ struct Simulation::Impl {
   std::unique_ptr<MembraneModel> membrane;
   std::unique_ptr<LeakyDielectricSolver> electric;  // only with a field
   std::unique_ptr<ViscosityIndicator> viscosity;    // only with V != 1
-  SawtoothFilter sawtooth;                          // numerics.marker_filter_every
+  // numerics.marker_filter_every; order 8, lower for fewer than 17 markers (it needs 2p + 1).
+  std::unique_ptr<SawtoothFilter> sawtooth;
 
   MembraneParameters membrane_parameters;
   ClosedCurve curve;
@@ -102,6 +103,8 @@ Simulation::Simulation(const Scene& scene) : scene_(scene), units_(DeriveLattice
   m.ib = std::make_unique<ImmersedBoundary>(grid_, scene_.has_shear(), false);
 
   m.initial_markers = InitialMarkers(scene_, units_);
+  m.sawtooth = std::make_unique<SawtoothFilter>(
+      std::clamp((static_cast<int>(m.initial_markers.cols()) - 1) / 2, 1, 8));
   const ClosedCurve reference(m.initial_markers);
   MembraneParameters& mp = m.membrane_parameters;
   if (scene_.membrane == MembraneKind::kDrop) {
@@ -332,7 +335,7 @@ void Simulation::Step() {
   m.U_previous = m.U;
   m.has_previous_velocity = true;
   if (scene_.numerics.marker_filter_every > 0 && step % scene_.numerics.marker_filter_every == 0) {
-    m.sawtooth.Apply(m.X);
+    m.sawtooth->Apply(m.X);
   }
   if (scene_.has_shear()) WrapCurveIntoDomain(grid_, m.X);
 
@@ -395,8 +398,9 @@ void Simulation::Step() {
     }
     std::string hint = "; marker spacing " + Fmt(smallest) + " .. " + Fmt(largest) + " h";
     if (scene_.membrane == MembraneKind::kDrop && scene_.numerics.redistribute_markers == 0.0) {
-      hint += " (a drop's markers drift along its surface and bunch, leaving gaps the flow leaks "
-              "through: set numerics.redistribute_markers = 2)";
+      hint +=
+          " (a drop's markers drift along its surface and bunch, leaving gaps the flow leaks "
+          "through: set numerics.redistribute_markers = 2)";
     } else if (largest > 2.0) {
       hint += " (gaps > 2 h leak: raise M)";
     }
@@ -461,6 +465,10 @@ std::string Simulation::Pipeline() const {
                                                                            : "forward Euler");
   if (scene_.numerics.redistribute_markers > 0.0) {
     out << ", re-spaced evenly when max/min spacing > " << scene_.numerics.redistribute_markers;
+  }
+  if (scene_.numerics.marker_filter_every > 0) {
+    out << ", sawtooth filter (order " << m.sawtooth->order() << ") every "
+        << scene_.numerics.marker_filter_every << " steps";
   }
   out << '\n';
   return out.str();
