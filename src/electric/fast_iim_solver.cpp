@@ -166,34 +166,24 @@ void FastIimSolver::ComputeInteriorFlux(const ClosedCurve& curve, const Periodic
   // moment of the inside part about the centre; plus the (h^2/24) Laplace(F) midpoint term.
   // Arc weights: w_k = integral of L_k dl with L_k the periodic cubic cardinal spline of marker
   // k (5-point Gauss per segment), so that sum_k w_k f_k is the O(ds^4) integral of the spline
-  // through f. The trapezoid weights (l_{k-1} + l_k) / 2 are only O(ds^2) on unevenly spaced
-  // markers, and for sigma^- >> sigma^+ the mean of G inherits the quadrature error of the flux
-  // balance multiplied by (sigma^- - sigma^+) / sigma^+ (the ellipse at 1000:1, N = 80: G off by
-  // 10% with the trapezoid weights).
-  arc_weight_.assign(m, 0.0);
+  // through f (PeriodicCubicSpline::IntegralWeights, O(M)). The trapezoid weights
+  // (l_{k-1} + l_k) / 2 are only O(ds^2) on unevenly spaced markers, and for sigma^- >> sigma^+
+  // the mean of G inherits the quadrature error of the flux balance multiplied by
+  // (sigma^- - sigma^+) / sigma^+ (the ellipse at 1000:1, N = 80: G off by 10% with the
+  // trapezoid weights).
   {
     const PeriodicCubicSpline& xs = curve.x_spline();
     const PeriodicCubicSpline& ys = curve.y_spline();
-    std::vector<double> node_t(m * kGaussPoints), node_w(m * kGaussPoints);
+    std::vector<double> knots(m), speed(m * kGaussPoints);
     for (int j = 0; j < m; ++j) {
-      const double t0 = curve.knot(j);
-      const double len = (j + 1 < m ? curve.knot(j + 1) : curve.period()) - t0;
+      knots[j] = curve.knot(j);
+      const double len = (j + 1 < m ? curve.knot(j + 1) : curve.period()) - knots[j];
       for (int q = 0; q < kGaussPoints; ++q) {
-        const double t = t0 + kGaussNode[q] * len;
-        node_t[j * kGaussPoints + q] = t;
-        node_w[j * kGaussPoints + q] =
-            kGaussWeight[q] * len * std::hypot(xs.Derivative(t), ys.Derivative(t));
+        const double t = knots[j] + kGaussNode[q] * len;
+        speed[j * kGaussPoints + q] = std::hypot(xs.Derivative(t), ys.Derivative(t));
       }
     }
-    std::vector<double> unit(m, 0.0);
-    for (int k = 0; k < m; ++k) {
-      unit[k] = 1.0;
-      const PeriodicCubicSpline cardinal = curve.FitScalar(unit);
-      unit[k] = 0.0;
-      double w = 0.0;
-      for (std::size_t i = 0; i < node_t.size(); ++i) w += node_w[i] * cardinal.Value(node_t[i]);
-      arc_weight_[k] = w;
-    }
+    arc_weight_ = PeriodicCubicSpline::IntegralWeights(knots, curve.period(), speed);
   }
   perimeter_ = 0.0;
   for (int k = 0; k < m; ++k) perimeter_ += arc_weight_[k];

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "ehd_capsule/geometry/gauss_legendre.h"
+
 namespace ehd {
 namespace {
 
@@ -79,6 +81,47 @@ void PeriodicCubicSpline::Fit(const std::vector<double>& knots, double period,
     r[k] = 6.0 * ((values[kp] - values[k]) / hk[k] - (values[k] - values[km]) / hk[km]);
   }
   second_ = SolveCyclicTridiagonal(a, b, c, r);
+}
+
+std::vector<double> PeriodicCubicSpline::IntegralWeights(const std::vector<double>& knots,
+                                                         double period,
+                                                         const std::vector<double>& rho_at_nodes) {
+  const int n = static_cast<int>(knots.size());
+  if (n < 3 || rho_at_nodes.size() != static_cast<std::size_t>(n) * kGaussPoints) {
+    throw std::invalid_argument("PeriodicCubicSpline::IntegralWeights: need >= 3 knots and " +
+                                std::to_string(kGaussPoints) + " node values per segment");
+  }
+  std::vector<double> hk(n), alpha(n, 0.0), beta(n, 0.0);
+  for (int k = 0; k < n; ++k) hk[k] = (k + 1 < n ? knots[k + 1] : period) - knots[k];
+  for (int k = 0; k < n; ++k) {
+    const int kp = (k + 1) % n;
+    const double h = hk[k];
+    for (int q = 0; q < kGaussPoints; ++q) {
+      const double t = kGaussNode[q] * h;
+      const double w = kGaussWeight[q] * h * rho_at_nodes[k * kGaussPoints + q];
+      // S = y_k (1 - t/h) + y_k+1 t/h + M_k (-h t/3 + t^2/2 - t^3/(6h)) + M_k+1 (-h t/6 + t^3/(6h))
+      alpha[k] += w * (1.0 - t / h);
+      alpha[kp] += w * (t / h);
+      beta[k] += w * (-h * t / 3.0 + 0.5 * t * t - t * t * t / (6.0 * h));
+      beta[kp] += w * (-h * t / 6.0 + t * t * t / (6.0 * h));
+    }
+  }
+  std::vector<double> a(n), b(n), c(n);
+  for (int k = 0; k < n; ++k) {
+    const int km = (k + n - 1) % n;
+    a[k] = hk[km];
+    b[k] = 2.0 * (hk[km] + hk[k]);
+    c[k] = hk[k];
+  }
+  const std::vector<double> z = SolveCyclicTridiagonal(a, b, c, beta);  // T^-1 beta
+  std::vector<double> w(n);
+  for (int k = 0; k < n; ++k) {
+    const int km = (k + n - 1) % n;
+    const int kp = (k + 1) % n;
+    // (R z)_k = 6 [(z_k+1 - z_k) / h_k - (z_k - z_k-1) / h_k-1]
+    w[k] = alpha[k] + 6.0 * ((z[kp] - z[k]) / hk[k] - (z[k] - z[km]) / hk[km]);
+  }
+  return w;
 }
 
 double PeriodicCubicSpline::Wrap(double s) const {

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "ehd_capsule/geometry/gauss_legendre.h"
+
 namespace ehd {
 namespace {
 
@@ -40,6 +42,67 @@ TEST(PeriodicCubicSpline, ConvergesFourthOrderOnSine) {
     }
   }
   EXPECT_GT(std::log2(err[0] / err[1]), 3.7);
+}
+
+// IntegralWeights: the weights must be the integrals of the cardinal splines (checked against
+// fitting each cardinal spline and integrating it with the same Gauss rule), and on uneven knots
+// sum_k w_k f(s_k) must converge to the exact integral at fourth order (the trapezoid rule with
+// the same knots is second order).
+TEST(PeriodicCubicSpline, IntegralWeightsAreTheCardinalIntegralsAndFourthOrder) {
+  const double period = 2.0 * M_PI;
+  auto knots_for = [&](int n) {
+    std::vector<double> s(n);
+    for (int k = 0; k < n; ++k) {
+      const double u = period * k / n;
+      s[k] = u + 0.3 * std::sin(u);  // uneven, increasing (derivative 1 + 0.3 cos u > 0)
+    }
+    return s;
+  };
+  auto rho = [](double s) { return 1.0 + 0.5 * std::cos(s); };
+  auto f = [](double s) { return std::exp(std::sin(s)) + std::cos(3.0 * s); };
+  // exact: integral of (1 + cos(s)/2)(exp(sin s) + cos 3s) = 2 pi I0(1) (the cos terms vanish:
+  // cos s exp(sin s) integrates to 0, cos s cos 3s and cos 3s too).
+  const double exact = period * std::cyl_bessel_i(0.0, 1.0);
+  double err[2], trapezoid_err[2];
+  for (int r = 0; r < 2; ++r) {
+    const int n = 48 << r;
+    const std::vector<double> s = knots_for(n);
+    std::vector<double> nodes(n * kGaussPoints);
+    for (int k = 0; k < n; ++k) {
+      const double h = (k + 1 < n ? s[k + 1] : period) - s[k];
+      for (int q = 0; q < kGaussPoints; ++q)
+        nodes[k * kGaussPoints + q] = rho(s[k] + kGaussNode[q] * h);
+    }
+    const std::vector<double> w = PeriodicCubicSpline::IntegralWeights(s, period, nodes);
+    if (r == 0) {
+      for (int j : {0, 5, n - 1}) {
+        std::vector<double> unit(n, 0.0);
+        unit[j] = 1.0;
+        PeriodicCubicSpline cardinal;
+        cardinal.Fit(s, period, unit);
+        double integral = 0.0;
+        for (int k = 0; k < n; ++k) {
+          const double h = (k + 1 < n ? s[k + 1] : period) - s[k];
+          for (int q = 0; q < kGaussPoints; ++q) {
+            const double x = s[k] + kGaussNode[q] * h;
+            integral += kGaussWeight[q] * h * rho(x) * cardinal.Value(x);
+          }
+        }
+        EXPECT_NEAR(w[j], integral, 1e-13) << j;
+      }
+    }
+    double sum = 0.0, trapezoid = 0.0;
+    for (int k = 0; k < n; ++k) {
+      sum += w[k] * f(s[k]);
+      const double left = s[k] - (k > 0 ? s[k - 1] : s[n - 1] - period);
+      const double right = (k + 1 < n ? s[k + 1] : period) - s[k];
+      trapezoid += 0.5 * (left + right) * rho(s[k]) * f(s[k]);
+    }
+    err[r] = std::abs(sum - exact);
+    trapezoid_err[r] = std::abs(trapezoid - exact);
+  }
+  EXPECT_GT(std::log2(err[0] / err[1]), 3.5);
+  EXPECT_LT(err[1], 0.1 * trapezoid_err[1]);
 }
 
 TEST(PeriodicCubicSpline, RejectsBadKnots) {

@@ -34,6 +34,15 @@ class PeriodicCubicSpline {
   // Segment containing s (after periodic wrap) and the local offset t = s - s_k.
   int Locate(double s, double* t) const;
 
+  // Quadrature weights w_k with sum_k w_k y_k = integral over [0, period) of S_y(s) rho(s) ds,
+  // S_y the periodic spline through values y at `knots`, the integral taken with the 5-point
+  // Gauss rule of gauss_legendre.h on each segment: rho_at_nodes[5 k + q] is rho at node q of
+  // segment k. S_y is linear in y (through the knot second derivatives M = T^-1 R y, T and R the
+  // symmetric matrices of the file comment), so w = alpha + R T^-1 beta with alpha, beta the
+  // weights of y and M in the segment integrals: one cyclic tridiagonal solve, O(M).
+  static std::vector<double> IntegralWeights(const std::vector<double>& knots, double period,
+                                             const std::vector<double>& rho_at_nodes);
+
  private:
   // Local cubic a + b t + c t^2 + d t^3 of the segment holding s, with t = s - s_k.
   struct Segment {
