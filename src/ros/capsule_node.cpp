@@ -22,7 +22,9 @@ CapsuleNode::CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 10);
   scene_pub_ = pnh_.advertise<std_msgs::String>("scene", 1, /*latch=*/true);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
-  if (use_sim_time_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 100);
+  if (use_sim_time_ && publish_clock_) {
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 100);
+  }
 
   pause_srv_ = pnh_.advertiseService("pause", &CapsuleNode::OnPause, this);
   resume_srv_ = pnh_.advertiseService("resume", &CapsuleNode::OnResume, this);
@@ -100,6 +102,9 @@ void CapsuleNode::ReadParameters() {
   pnh_.param<std::string>("bag", bag_path_, "ehd_capsule.bag");
   pnh_.param("advance_steps", advance_steps_, 1);
   pnh_.param("progress_period", progress_period_, 5.0);
+  // With /use_sim_time, this node publishes /clock unless told not to: with several simulation
+  // nodes, exactly one should own the clock (two clocks jump back and forth).
+  pnh_.param("publish_clock", publish_clock_, true);
   nh_.param("/use_sim_time", use_sim_time_, false);
 
   // Scene overrides: ~set is a dictionary of top-level scene keys, e.g. {Ca: 0.1, N: 64}.
@@ -318,12 +323,6 @@ void CapsuleNode::StepOnce() {
   }
   ++rate_window_steps_;
   const long step = sim_->state().step;
-  if (use_sim_time_) {
-    rosgraph_msgs::Clock clock;
-    clock.clock = StampNow();
-    clock_pub_.publish(clock);
-    if (bag_open_) Record("/clock", clock, clock.clock);
-  }
   if (step % publish_every_ == 0) PublishState();
   if (max_steps_ > 0 && step >= max_steps_) {
     run_state_ = RunState::kFinished;
@@ -349,6 +348,14 @@ void CapsuleNode::PrintProgress(bool force) {
 
 void CapsuleNode::PublishState() {
   const ros::Time stamp = StampNow();
+  // The clock goes with the states (at publish_every 100 it used to be 40% of a bag, published
+  // every step), and only from the node that owns it (~publish_clock).
+  if (use_sim_time_ && publish_clock_) {
+    rosgraph_msgs::Clock clock;
+    clock.clock = stamp;
+    clock_pub_.publish(clock);
+    if (bag_open_) Record("/clock", clock, clock.clock);
+  }
   const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
                                       velocity_stride_};
   const ehd_capsule::CapsuleState state = MakeCapsuleState(*sim_, settings, stamp);
@@ -377,7 +384,7 @@ void CapsuleNode::PublishDiagnostics(bool force) {
   diagnostic_msgs::DiagnosticArray array;
   array.header.stamp = ros::Time::now();
   diagnostic_msgs::DiagnosticStatus status;
-  status.name = "ehd_capsule: simulation";
+  status.name = ros::this_node::getName() + ": simulation";  // distinct per node
   status.hardware_id = scene_name_;
   const SimulationState& s = sim_->state();
   switch (run_state_) {

@@ -22,7 +22,8 @@ class FailureTest(unittest.TestCase):
 
         def on_diag(msg):
             for s in msg.status:
-                if s.name.startswith("ehd_capsule") and s.level == DiagnosticStatus.ERROR:
+                # status "<node name>: simulation" (here /ehd_capsule: simulation)
+                if s.name.startswith("/ehd_capsule") and s.level == DiagnosticStatus.ERROR:
                     errors.append(s)
 
         rospy.Subscriber("/diagnostics", DiagnosticArray, on_diag)

@@ -86,6 +86,7 @@ class CapsuleNode {
   bool record_ = false;
   std::string bag_path_;
   bool use_sim_time_ = false;
+  bool publish_clock_ = true;  // ~publish_clock: this node owns /clock (with /use_sim_time)
 
   Scene scene_;
   std::unique_ptr<Simulation> sim_;
