@@ -222,8 +222,16 @@ void Simulation::SetCa(double ca) {
     throw std::invalid_argument("Ca = " + Fmt(ca) + ": scene " + scene_.name +
                                 " has no shear flow (flow: none); accepted: none");
   }
-  if (!(ca >= 0.0 && ca <= scene_.max_Ca)) {
-    throw std::invalid_argument("Ca = " + Fmt(ca) + " is out of range: accepted [0, " +
+  if (ca == 0.0) {
+    // Time is counted in units of 1/k (sum of k dt): with the walls stopped it would stand still
+    // while the steps go on.
+    throw std::invalid_argument(
+        "Ca = 0 would stop the walls and with them the time unit 1/k: "
+        "accepted (0, " +
+        Fmt(scene_.max_Ca) + "]");
+  }
+  if (!(ca > 0.0 && ca <= scene_.max_Ca)) {
+    throw std::invalid_argument("Ca = " + Fmt(ca) + " is out of range: accepted (0, " +
                                 Fmt(scene_.max_Ca) + "] (max_Ca, the scene's measured limit)");
   }
   const double k = ShearRateForCa(units_, ca);

@@ -18,6 +18,7 @@ CapsuleNode::CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   BuildSimulation();
 
   state_pub_ = pnh_.advertise<ehd_capsule::CapsuleState>("state", 1000);
+  throttled_pub_ = pnh_.advertise<ehd_capsule::CapsuleState>("state_throttled", 10);
   shape_pub_ = pnh_.advertise<geometry_msgs::PolygonStamped>("shape", 10);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 10);
   scene_pub_ = pnh_.advertise<std_msgs::String>("scene", 1, /*latch=*/true);
@@ -105,6 +106,12 @@ void CapsuleNode::ReadParameters() {
   // With /use_sim_time, this node publishes /clock unless told not to: with several simulation
   // nodes, exactly one should own the clock (two clocks jump back and forth).
   pnh_.param("publish_clock", publish_clock_, true);
+  // ~state_throttled: the latest state at most this often in wall time (plots, UIs: ~state runs
+  // at thousands of messages per second of sim time, which rqt_plot and rospy cannot follow).
+  pnh_.param("throttled_rate", throttled_rate_, 20.0);
+  if (!(throttled_rate_ > 0.0)) {
+    throw std::invalid_argument("~throttled_rate must be > 0 (Hz of wall time)");
+  }
   nh_.param("/use_sim_time", use_sim_time_, false);
 
   // Scene overrides: ~set is a dictionary of top-level scene keys, e.g. {Ca: 0.1, N: 64}.
@@ -330,6 +337,17 @@ void CapsuleNode::StepOnce() {
   }
 }
 
+void CapsuleNode::PublishThrottled() {
+  const ros::WallTime now = ros::WallTime::now();
+  if ((now - last_throttled_).toSec() < 1.0 / throttled_rate_) return;
+  if (sim_->state().step == last_throttled_step_) return;  // nothing new (paused, finished)
+  last_throttled_ = now;
+  last_throttled_step_ = sim_->state().step;
+  const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
+                                      velocity_stride_};
+  throttled_pub_.publish(MakeCapsuleState(*sim_, settings, StampNow()));
+}
+
 void CapsuleNode::PrintProgress(bool force) {
   if (progress_period_ <= 0.0 && !force) return;
   const ros::WallTime now = ros::WallTime::now();
@@ -432,6 +450,7 @@ int CapsuleNode::Run() {
     ApplyPendingRequests();
     PublishDiagnostics(false);
     if (run_state_ == RunState::kRunning) PrintProgress(false);
+    PublishThrottled();
     if (run_state_ == RunState::kFinished) break;
     const bool may_step = run_state_ == RunState::kRunning ||
                           (run_state_ == RunState::kPaused && advance_remaining_ > 0);

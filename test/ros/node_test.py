@@ -7,7 +7,9 @@ What must hold, and why:
   doubles it (up to the small shape change between two steps), and Ca_E = 0 gives none;
 - a neutral capsule in a uniform field feels no net electric force: the resultant is small
   against the total magnitude of the force density;
-- a change made through dynamic_reconfigure shows in the next message;
+- a change made through dynamic_reconfigure shows in the next message; Ca = 0 is refused (it
+  would freeze the time, counted in units of 1/k);
+- ~state_throttled follows at a wall-clock rate of at most 20 Hz;
 - pause stops the steps, advance takes exactly `advance_steps` steps, resume continues;
 - an invalid scene makes the node exit non-zero with a message naming the problem.
 """
@@ -140,6 +142,34 @@ class NodeTest(unittest.TestCase):
         cfg = self.client.get_configuration(timeout=10)
         self.assertGreaterEqual(cfg["Ca_E"], 0.0, "refused value still shown as set")
         self.assertGreater(msgs[-1].step, last.step, "node stopped after a refused value")
+
+    def test_4b_refuses_ca_zero(self):
+        # Time is in units of 1/k: Ca = 0 would freeze it while the steps go on.
+        self.client.update_configuration({"Ca": 0.0})
+        import time
+        time.sleep(1.0)
+        msgs = self.rec.snapshot()
+        self.assertTrue(all(m.ca > 0.0 for m in msgs), "Ca = 0 was applied")
+        self.assertGreater(msgs[-1].time, msgs[-20].time, "time stood still")
+
+    def test_4c_throttled_state_at_a_wall_clock_rate(self):
+        # ~state_throttled carries the latest state at most ~throttled_rate (20) times per wall
+        # second, while ~state runs at the step rate (thousands per second).
+        import time
+        got = []
+        sub = rospy.Subscriber(NODE + "/state_throttled", CapsuleState, lambda m: got.append(m),
+                               queue_size=100)
+        time.sleep(0.5)
+        del got[:]
+        start = len(self.rec.snapshot())
+        time.sleep(3.0)
+        sub.unregister()
+        per_step = len(self.rec.snapshot()) - start
+        self.assertGreater(len(got), 10, "throttled topic silent")
+        self.assertLess(len(got), 3.0 * 20 * 1.25, "throttled topic faster than 20 Hz")
+        self.assertGreater(per_step, len(got), "~state slower than the throttled topic")
+        steps = [m.step for m in got]
+        self.assertEqual(steps, sorted(steps))
 
     def test_5_pause_advance_resume(self):
         import time

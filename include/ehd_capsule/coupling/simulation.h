@@ -60,7 +60,8 @@ class Simulation {
 
   // Queue a change applied at the next Step. SetCaE throws std::invalid_argument outside
   // [0, electric.max_Ca_E], or for Ca_E > 0 on a scene built without the field. SetCa throws
-  // outside [0, 10] or on a scene without shear; it changes the wall speed, not the membrane.
+  // outside (0, max_Ca] (Ca = 0 would freeze the time, counted in units of 1/k) or on a scene
+  // without shear; it changes the wall speed, not the membrane.
   void SetCaE(double ca_e);
   void SetCa(double ca);
 

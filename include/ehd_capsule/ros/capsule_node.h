@@ -62,6 +62,8 @@ class CapsuleNode {
   void PrintProgress(bool force);
   // Warns with the memory and time estimate when the scene is too large to watch live.
   void WarnIfLarge() const;
+  // The latest state on ~state_throttled, at most ~throttled_rate times per wall second.
+  void PublishThrottled();
   void Fail(const std::string& reason);
   ros::Time StampNow() const;
   template <typename M>
@@ -86,7 +88,10 @@ class CapsuleNode {
   bool record_ = false;
   std::string bag_path_;
   bool use_sim_time_ = false;
-  bool publish_clock_ = true;  // ~publish_clock: this node owns /clock (with /use_sim_time)
+  bool publish_clock_ = true;     // ~publish_clock: this node owns /clock (with /use_sim_time)
+  double throttled_rate_ = 20.0;  // ~throttled_rate, Hz of wall time
+  ros::WallTime last_throttled_;
+  long last_throttled_step_ = -1;
 
   Scene scene_;
   std::unique_ptr<Simulation> sim_;
@@ -103,6 +108,7 @@ class CapsuleNode {
   bool config_dirty_ = false;  // config_ must be pushed back to dynamic_reconfigure
 
   ros::Publisher state_pub_, shape_pub_, markers_pub_, scene_pub_, clock_pub_, diag_pub_;
+  ros::Publisher throttled_pub_;  // ~state_throttled
   ros::ServiceServer pause_srv_, resume_srv_, reset_srv_, advance_srv_;
   std::unique_ptr<dynamic_reconfigure::Server<ehd_capsule::SimulationConfig>> reconfigure_;
   boost::recursive_mutex reconfigure_mutex_;
