@@ -31,6 +31,7 @@ CapsuleNode::CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   resume_srv_ = pnh_.advertiseService("resume", &CapsuleNode::OnResume, this);
   reset_srv_ = pnh_.advertiseService("reset", &CapsuleNode::OnReset, this);
   advance_srv_ = pnh_.advertiseService("advance", &CapsuleNode::OnAdvance, this);
+  advance_by_srv_ = pnh_.advertiseService("advance_by", &CapsuleNode::OnAdvanceBy, this);
 
   // The dynamic_reconfigure defaults are the scene's values, not the .cfg's.
   config_.Ca_E = sim_->state().ca_e;
@@ -261,6 +262,25 @@ bool CapsuleNode::OnAdvance(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   advance_remaining_ += advance_steps_;
   res.success = true;
   res.message = "advancing " + std::to_string(advance_steps_) + " steps from step " +
+                std::to_string(sim_->state().step);
+  return true;
+}
+
+bool CapsuleNode::OnAdvanceBy(ehd_capsule::Advance::Request& req,
+                              ehd_capsule::Advance::Response& res) {
+  if (req.steps < 1) {
+    res.success = false;
+    res.message = "steps must be >= 1 (got " + std::to_string(req.steps) + ")";
+    return true;
+  }
+  if (run_state_ != RunState::kPaused) {
+    res.success = false;
+    res.message = "advance works while paused (call ~pause first)";
+    return true;
+  }
+  advance_remaining_ += req.steps;
+  res.success = true;
+  res.message = "advancing " + std::to_string(req.steps) + " steps from step " +
                 std::to_string(sim_->state().step);
   return true;
 }

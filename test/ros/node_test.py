@@ -10,7 +10,8 @@ What must hold, and why:
 - a change made through dynamic_reconfigure shows in the next message; Ca = 0 is refused (it
   would freeze the time, counted in units of 1/k);
 - ~state_throttled follows at a wall-clock rate of at most 20 Hz;
-- pause stops the steps, advance takes exactly `advance_steps` steps, resume continues;
+- pause stops the steps, advance takes exactly `advance_steps` steps, advance_by exactly the
+  steps of its request, resume continues;
 - an invalid scene makes the node exit non-zero with a message naming the problem.
 """
 import math
@@ -185,8 +186,18 @@ class NodeTest(unittest.TestCase):
         self.assertIsNotNone(m, "advance did not reach step %d" % (b + 5))
         time.sleep(0.5)
         self.assertEqual(self.rec.snapshot()[-1].step, b + 5, "advance overshot")
+        # ~advance_by takes the count in the request.
+        from ehd_capsule.srv import Advance
+        rospy.wait_for_service(NODE + "/advance_by", timeout=10)
+        advance_by = rospy.ServiceProxy(NODE + "/advance_by", Advance)
+        self.assertFalse(advance_by(0).success, "advance_by 0 accepted")
+        self.assertTrue(advance_by(7).success)
+        m = self.rec.wait_for(lambda m: m.step == b + 12, timeout=30)
+        self.assertIsNotNone(m, "advance_by did not reach step %d" % (b + 12))
+        time.sleep(0.5)
+        self.assertEqual(self.rec.snapshot()[-1].step, b + 12, "advance_by overshot")
         self.assertTrue(self.call("resume").success)
-        m = self.rec.wait_for(lambda m: m.step > b + 10, timeout=30)
+        m = self.rec.wait_for(lambda m: m.step > b + 17, timeout=30)
         self.assertIsNotNone(m, "did not resume")
 
     def test_6_reset(self):

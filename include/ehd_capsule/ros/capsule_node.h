@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "ehd_capsule/Advance.h"
 #include "ehd_capsule/CapsuleState.h"
 #include "ehd_capsule/SimulationConfig.h"
 #include "ehd_capsule/coupling/simulation.h"
@@ -53,6 +54,7 @@ class CapsuleNode {
   bool OnResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool OnReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool OnAdvance(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
+  bool OnAdvanceBy(ehd_capsule::Advance::Request& req, ehd_capsule::Advance::Response& res);
   void ApplyPendingRequests();
   void StepOnce();
   void PublishState();
@@ -109,7 +111,7 @@ class CapsuleNode {
 
   ros::Publisher state_pub_, shape_pub_, markers_pub_, scene_pub_, clock_pub_, diag_pub_;
   ros::Publisher throttled_pub_;  // ~state_throttled
-  ros::ServiceServer pause_srv_, resume_srv_, reset_srv_, advance_srv_;
+  ros::ServiceServer pause_srv_, resume_srv_, reset_srv_, advance_srv_, advance_by_srv_;
   std::unique_ptr<dynamic_reconfigure::Server<ehd_capsule::SimulationConfig>> reconfigure_;
   boost::recursive_mutex reconfigure_mutex_;
 
