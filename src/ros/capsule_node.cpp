@@ -5,7 +5,11 @@
 #include <std_msgs/String.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <sstream>
 
 #include "ehd_capsule/ros/state_messages.h"
@@ -102,6 +106,7 @@ void CapsuleNode::ReadParameters() {
   pnh_.param("max_step_rate", max_step_rate_, 0.0);
   pnh_.param("record", record_, false);
   pnh_.param<std::string>("bag", bag_path_, "ehd_capsule.bag");
+  pnh_.param("overwrite", overwrite_, false);
   pnh_.param("advance_steps", advance_steps_, 1);
   pnh_.param("progress_period", progress_period_, 5.0);
   // With /use_sim_time, this node publishes /clock unless told not to: with several simulation
@@ -169,15 +174,33 @@ void CapsuleNode::BuildSimulation() {
 
 void CapsuleNode::OpenBag() {
   if (!record_) return;
-  bag_.open(bag_path_, rosbag::bagmode::Write);
+  // An existing bag is not overwritten unless ~overwrite is true (a new run used to replace the
+  // previous one silently).
+  if (!overwrite_ && (std::ifstream(bag_path_).good() || std::ifstream(ActiveBagPath()).good())) {
+    throw std::invalid_argument("~bag " + bag_path_ +
+                                " exists: choose another path or set ~overwrite true "
+                                "(launch argument overwrite:=true)");
+  }
+  // Written as <bag>.active and renamed to <bag> when closed, as `rosbag record` does: a bag
+  // left by a killed process (kill -9, power loss) keeps the .active name and is repaired with
+  // `rosbag reindex`.
+  bag_.open(ActiveBagPath(), rosbag::bagmode::Write);
   bag_open_ = true;
-  ROS_INFO("ehd_capsule: recording to %s", bag_path_.c_str());
+  ROS_INFO("ehd_capsule: recording to %s (as %s until closed)", bag_path_.c_str(),
+           ActiveBagPath().c_str());
 }
+
+std::string CapsuleNode::ActiveBagPath() const { return bag_path_ + ".active"; }
 
 void CapsuleNode::CloseBag() {
   if (!bag_open_) return;
   bag_.close();
   bag_open_ = false;
+  if (std::rename(ActiveBagPath().c_str(), bag_path_.c_str()) != 0) {
+    ROS_ERROR("ehd_capsule: bag closed, but renaming %s to %s failed: %s", ActiveBagPath().c_str(),
+              bag_path_.c_str(), std::strerror(errno));
+    return;
+  }
   ROS_INFO("ehd_capsule: bag %s closed with %ld states", bag_path_.c_str(), published_states_);
 }
 

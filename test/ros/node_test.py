@@ -240,6 +240,32 @@ class NodeTest(unittest.TestCase):
             self.assertNotEqual(p.returncode, 0, "node accepted %s" % scene)
             self.assertIn(expect, p.stdout + p.stderr)
 
+    def test_8_existing_bag_is_not_overwritten(self):
+        # A new run on an existing bag path used to replace it silently: now it refuses at start
+        # (exit status != 0, message naming the path and the way out) unless ~overwrite is true.
+        libexec = subprocess.run(["catkin_find", "--libexec", "ehd_capsule"],
+                                 capture_output=True, text=True).stdout.split()
+        node = os.path.join(libexec[0], "ehd_capsule_node")
+        with tempfile.NamedTemporaryFile(suffix=".bag", delete=False) as f:
+            f.write(b"an earlier run")
+            path = f.name
+        p = subprocess.run([node, "__name:=ehd_overwrite_test", "_record:=true", "_bag:=" + path,
+                            "_steps:=5"],
+                           capture_output=True, text=True, timeout=60)
+        self.assertNotEqual(p.returncode, 0, "node overwrote an existing bag")
+        self.assertIn("exists", p.stdout + p.stderr)
+        with open(path, "rb") as f:
+            self.assertEqual(f.read(), b"an earlier run")
+        p = subprocess.run([node, "__name:=ehd_overwrite_test", "_record:=true", "_bag:=" + path,
+                            "_steps:=5", "_overwrite:=true"],
+                           capture_output=True, text=True, timeout=60)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        self.assertFalse(os.path.exists(path + ".active"), "bag left .active after closing")
+        import rosbag
+        with rosbag.Bag(path) as bag:
+            self.assertEqual(bag.get_message_count("/ehd_overwrite_test/state"), 5)
+        os.remove(path)
+
 
 if __name__ == "__main__":
     rostest.rosrun("ehd_capsule", "node_behaviour", NodeTest, sys.argv)

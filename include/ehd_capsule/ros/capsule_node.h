@@ -49,6 +49,7 @@ class CapsuleNode {
   void BuildSimulation();
   void OpenBag();
   void CloseBag();
+  std::string ActiveBagPath() const;  // <bag>.active while recording
   void OnReconfigure(ehd_capsule::SimulationConfig& config, uint32_t level);
   bool OnPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool OnResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
@@ -90,6 +91,7 @@ class CapsuleNode {
   bool record_ = false;
   std::string bag_path_;
   bool use_sim_time_ = false;
+  bool overwrite_ = false;        // ~overwrite: replace an existing bag
   bool publish_clock_ = true;     // ~publish_clock: this node owns /clock (with /use_sim_time)
   double throttled_rate_ = 20.0;  // ~throttled_rate, Hz of wall time
   ros::WallTime last_throttled_;
