@@ -15,6 +15,10 @@ if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
   find_package(rostest REQUIRED)
   file(GLOB EHD_ROSTESTS RELATIVE ${CMAKE_CURRENT_SOURCE_DIR} CONFIGURE_DEPENDS
        ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/*.test)
+  # scripts/run returns the node's exit status (roslaunch does not).
+  add_test(NAME ros_exit_codes COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/exit_codes.sh)
+  set_tests_properties(ros_exit_codes PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
+                       LABELS "ros;integration")
   foreach(rostest_file ${EHD_ROSTESTS})
     add_rostest(${rostest_file} DEPENDENCIES ehd_capsule_node)
     string(REPLACE "/" "_" rostest_name ${rostest_file})

@@ -107,6 +107,9 @@ void CapsuleNode::ReadParameters() {
   pnh_.param("record", record_, false);
   pnh_.param<std::string>("bag", bag_path_, "ehd_capsule.bag");
   pnh_.param("overwrite", overwrite_, false);
+  // A batch run (~steps > 0) ends on a simulation error with exit status 1; a live run (steps 0)
+  // stays up for inspection (~reset starts over) unless ~exit_on_error is true.
+  pnh_.param("exit_on_error", exit_on_error_, max_steps_ > 0);
   pnh_.param("advance_steps", advance_steps_, 1);
   pnh_.param("progress_period", progress_period_, 5.0);
   // With /use_sim_time, this node publishes /clock unless told not to: with several simulation
@@ -359,7 +362,11 @@ void CapsuleNode::Fail(const std::string& reason) {
   run_state_ = RunState::kFailed;
   failure_ = reason;
   ROS_ERROR("ehd_capsule: simulation stopped at step %ld: %s", sim_->state().step, reason.c_str());
-  ROS_ERROR("ehd_capsule: the node stays up for inspection; call ~reset to start over");
+  if (exit_on_error_) {
+    ROS_ERROR("ehd_capsule: exiting with status 1 (~exit_on_error)");
+  } else {
+    ROS_ERROR("ehd_capsule: the node stays up for inspection; call ~reset to start over");
+  }
   PublishDiagnostics(true);
   CloseBag();
 }
@@ -495,6 +502,7 @@ int CapsuleNode::Run() {
     if (run_state_ == RunState::kRunning) PrintProgress(false);
     PublishThrottled();
     if (run_state_ == RunState::kFinished) break;
+    if (run_state_ == RunState::kFailed && exit_on_error_) break;
     const bool may_step = run_state_ == RunState::kRunning ||
                           (run_state_ == RunState::kPaused && advance_remaining_ > 0);
     if (!may_step) {
@@ -525,7 +533,9 @@ int CapsuleNode::Run() {
         wall > 0 ? st.step / wall : 0.0);
   }
   CloseBag();
-  return 0;
+  // Exit status: 1 if the simulation stopped on an error (even when the node was shut down
+  // afterwards), 0 otherwise; main() returns 1 for an invalid scene or parameter.
+  return run_state_ == RunState::kFailed ? 1 : 0;
 }
 
 }  // namespace ehd::ros_node

@@ -37,9 +37,9 @@ class CapsuleNode {
   CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
   ~CapsuleNode();
 
-  // Steps until ~steps is reached (returns 0) or ROS shuts down (returns 0). A simulation error
-  // stops the stepping but not the node; it then waits for shutdown and returns 0 as well, so
-  // roslaunch is never taken down by a crash.
+  // Steps until ~steps is reached (returns 0) or ROS shuts down. A simulation error stops the
+  // stepping; with ~exit_on_error (the default for a batch run, ~steps > 0) Run returns 1 at
+  // once, else the node stays up for inspection and returns 1 at shutdown.
   int Run();
 
  private:
@@ -92,6 +92,7 @@ class CapsuleNode {
   std::string bag_path_;
   bool use_sim_time_ = false;
   bool overwrite_ = false;        // ~overwrite: replace an existing bag
+  bool exit_on_error_ = false;    // ~exit_on_error (default: ~steps > 0)
   bool publish_clock_ = true;     // ~publish_clock: this node owns /clock (with /use_sim_time)
   double throttled_rate_ = 20.0;  // ~throttled_rate, Hz of wall time
   ros::WallTime last_throttled_;
