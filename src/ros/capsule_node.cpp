@@ -53,7 +53,7 @@ CapsuleNode::CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   scene_msg.data = scene_.yaml_text;
   scene_pub_.publish(scene_msg);
   OpenBag();
-  if (bag_open_) Record("scene", scene_msg, StampNow());
+  Record("scene", scene_msg, StampNow());
 
   ROS_INFO_STREAM("ehd_capsule: scene '" << scene_name_ << "'\n"
                                          << DescribeUnits(scene_, sim_->units())
@@ -107,6 +107,13 @@ void CapsuleNode::ReadParameters() {
   pnh_.param("record", record_, false);
   pnh_.param<std::string>("bag", bag_path_, "ehd_capsule.bag");
   pnh_.param("overwrite", overwrite_, false);
+  std::string on_record_error;
+  pnh_.param<std::string>("on_record_error", on_record_error, "pause");
+  if (on_record_error != "pause" && on_record_error != "stop") {
+    throw std::invalid_argument("~on_record_error must be pause or stop (got '" + on_record_error +
+                                "')");
+  }
+  stop_on_record_error_ = on_record_error == "stop";
   // A batch run (~steps > 0) ends on a simulation error with exit status 1; a live run (steps 0)
   // stays up for inspection (~reset starts over) unless ~exit_on_error is true.
   pnh_.param("exit_on_error", exit_on_error_, max_steps_ > 0);
@@ -209,9 +216,36 @@ void CapsuleNode::CloseBag() {
 
 template <typename M>
 void CapsuleNode::Record(const std::string& topic, const M& msg, const ros::Time& stamp) {
+  if (!bag_open_) return;
   // Topics are recorded under the node's resolved names so a replay republishes them there.
   const std::string name = topic.front() == '/' ? topic : pnh_.resolveName(topic);
-  bag_.write(name, stamp.isZero() ? ros::Time(1e-9) : stamp, msg);
+  try {
+    bag_.write(name, stamp.isZero() ? ros::Time(1e-9) : stamp, msg);
+  } catch (const std::exception& e) {
+    // Disk full, file size limit, I/O error: stop recording (close what can be closed), say
+    // why in an ERROR diagnostic, pause or stop the simulation (~on_record_error), and exit
+    // non-zero at the end.
+    record_failure_ = std::string("writing the bag ") + ActiveBagPath() + " failed: " + e.what();
+    ROS_ERROR("ehd_capsule: %s; recording stopped at step %ld", record_failure_.c_str(),
+              sim_->state().step);
+    bag_open_ = false;
+    try {
+      bag_.close();
+    } catch (const std::exception& close_error) {
+      ROS_ERROR("ehd_capsule: closing the bag failed too: %s", close_error.what());
+    }
+    if (stop_on_record_error_) {
+      Fail(record_failure_);
+    } else if (run_state_ == RunState::kRunning) {
+      run_state_ = RunState::kPaused;
+      config_.paused = true;
+      config_dirty_ = true;
+      ROS_ERROR(
+          "ehd_capsule: simulation paused (~on_record_error: pause); ~resume continues "
+          "without recording");
+    }
+    PublishDiagnostics(true);
+  }
 }
 
 ros::Time CapsuleNode::StampNow() const {
@@ -422,7 +456,7 @@ void CapsuleNode::PublishState() {
     rosgraph_msgs::Clock clock;
     clock.clock = stamp;
     clock_pub_.publish(clock);
-    if (bag_open_) Record("/clock", clock, clock.clock);
+    Record("/clock", clock, clock.clock);
   }
   const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
                                       velocity_stride_};
@@ -488,8 +522,14 @@ void CapsuleNode::PublishDiagnostics(bool force) {
   add("max_mach", std::to_string(s.max_mach));
   add("Ca_E", std::to_string(s.ca_e));
   add("Ca", std::to_string(s.ca));
+  if (!record_failure_.empty() && status.level != status.ERROR) {
+    status.level = status.ERROR;
+    status.message = record_failure_;
+  }
   array.status.push_back(status);
   diag_pub_.publish(array);
+  // In the bag too, so that it tells why it ended (a failure is recorded before it is closed).
+  Record("/diagnostics", array, StampNow());
 }
 
 int CapsuleNode::Run() {
@@ -535,7 +575,7 @@ int CapsuleNode::Run() {
   CloseBag();
   // Exit status: 1 if the simulation stopped on an error (even when the node was shut down
   // afterwards), 0 otherwise; main() returns 1 for an invalid scene or parameter.
-  return run_state_ == RunState::kFailed ? 1 : 0;
+  return run_state_ == RunState::kFailed || !record_failure_.empty() ? 1 : 0;
 }
 
 }  // namespace ehd::ros_node

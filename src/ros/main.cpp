@@ -3,9 +3,14 @@
 // exit code 1; a simulation error later stops the stepping but keeps the node up.
 #include <ros/ros.h>
 
+#include <csignal>
+
 #include "ehd_capsule/ros/capsule_node.h"
 
 int main(int argc, char** argv) {
+  // A file size limit (ulimit -f) would kill the process on the bag write that exceeds it; with
+  // SIGXFSZ ignored the write fails instead and the node handles it like a full disk.
+  std::signal(SIGXFSZ, SIG_IGN);
   ros::init(argc, argv, "ehd_capsule");
   ros::NodeHandle nh;
   ros::NodeHandle pnh("~");

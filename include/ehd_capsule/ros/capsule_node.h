@@ -91,10 +91,12 @@ class CapsuleNode {
   bool record_ = false;
   std::string bag_path_;
   bool use_sim_time_ = false;
-  bool overwrite_ = false;        // ~overwrite: replace an existing bag
-  bool exit_on_error_ = false;    // ~exit_on_error (default: ~steps > 0)
-  bool publish_clock_ = true;     // ~publish_clock: this node owns /clock (with /use_sim_time)
-  double throttled_rate_ = 20.0;  // ~throttled_rate, Hz of wall time
+  bool overwrite_ = false;             // ~overwrite: replace an existing bag
+  bool exit_on_error_ = false;         // ~exit_on_error (default: ~steps > 0)
+  bool stop_on_record_error_ = false;  // ~on_record_error: pause (default) or stop
+  std::string record_failure_;         // why recording stopped (empty: it did not)
+  bool publish_clock_ = true;          // ~publish_clock: this node owns /clock (with /use_sim_time)
+  double throttled_rate_ = 20.0;       // ~throttled_rate, Hz of wall time
   ros::WallTime last_throttled_;
   long last_throttled_step_ = -1;
 
