@@ -106,6 +106,7 @@ void CapsuleNode::ReadParameters() {
   pnh_.param("max_step_rate", max_step_rate_, 0.0);
   pnh_.param("record", record_, false);
   pnh_.param<std::string>("bag", bag_path_, "ehd_capsule.bag");
+  base_bag_path_ = bag_path_;
   pnh_.param("overwrite", overwrite_, false);
   std::string on_record_error;
   pnh_.param<std::string>("on_record_error", on_record_error, "pause");
@@ -358,6 +359,26 @@ void CapsuleNode::ApplyPendingRequests() {
     config_.Ca = sim_->state().ca;
     config_dirty_ = true;
     ROS_INFO("ehd_capsule: reset to the initial state of scene '%s'", scene_name_.c_str());
+    if (record_) {
+      // A new timeline starts at t = 0: a new bag, numbered (<stem>.1.bag, .2.bag, ...), so no
+      // bag holds two timelines; recording resumes after a failure too.
+      CloseBag();
+      ++bag_serial_;
+      std::string stem = base_bag_path_;
+      if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, ".bag") == 0) {
+        stem.resize(stem.size() - 4);
+      }
+      bag_path_ = stem + "." + std::to_string(bag_serial_) + ".bag";
+      try {
+        OpenBag();
+        std_msgs::String scene_msg;
+        scene_msg.data = scene_.yaml_text;
+        Record("scene", scene_msg, StampNow());
+        record_failure_.clear();
+      } catch (const std::exception& e) {
+        ROS_ERROR("ehd_capsule: cannot record after the reset: %s", e.what());
+      }
+    }
   }
   const long next_step = sim_->state().step + 1;
   if (pending_ca_e_) {

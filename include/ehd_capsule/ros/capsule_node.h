@@ -95,8 +95,10 @@ class CapsuleNode {
   bool exit_on_error_ = false;         // ~exit_on_error (default: ~steps > 0)
   bool stop_on_record_error_ = false;  // ~on_record_error: pause (default) or stop
   std::string record_failure_;         // why recording stopped (empty: it did not)
-  bool publish_clock_ = true;          // ~publish_clock: this node owns /clock (with /use_sim_time)
-  double throttled_rate_ = 20.0;       // ~throttled_rate, Hz of wall time
+  std::string base_bag_path_;          // ~bag as given; resets record to <stem>.<n>.bag
+  int bag_serial_ = 0;
+  bool publish_clock_ = true;     // ~publish_clock: this node owns /clock (with /use_sim_time)
+  double throttled_rate_ = 20.0;  // ~throttled_rate, Hz of wall time
   ros::WallTime last_throttled_;
   long last_throttled_step_ = -1;
 
