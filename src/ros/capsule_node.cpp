@@ -120,6 +120,11 @@ void CapsuleNode::ReadParameters() {
   pnh_.param("exit_on_error", exit_on_error_, max_steps_ > 0);
   pnh_.param("advance_steps", advance_steps_, 1);
   pnh_.param("progress_period", progress_period_, 5.0);
+  // ~until_steady TOL > 0: stop (like reaching ~steps) once D_xy and theta are steady to TOL
+  // over a unit of time (relative, as `ehd_sim run --until-steady`).
+  pnh_.param("until_steady", until_steady_, 0.0);
+  if (until_steady_ < 0.0) throw std::invalid_argument("~until_steady must be >= 0");
+  if (until_steady_ > 0.0) steady_monitor_ = std::make_unique<SteadyStateMonitor>(until_steady_);
   // With /use_sim_time, this node publishes /clock unless told not to: with several simulation
   // nodes, exactly one should own the clock (two clocks jump back and forth).
   pnh_.param("publish_clock", publish_clock_, true);
@@ -439,6 +444,13 @@ void CapsuleNode::StepOnce() {
   if (max_steps_ > 0 && step >= max_steps_) {
     run_state_ = RunState::kFinished;
     ROS_INFO("ehd_capsule: reached %ld steps (t = %g); stopping", step, sim_->state().time);
+  }
+  if (steady_monitor_ &&
+      steady_monitor_->Update(sim_->state().time, sim_->state().dxy, sim_->state().inclination)) {
+    run_state_ = RunState::kFinished;
+    ROS_INFO("ehd_capsule: steady to %g at t = %g (D_xy = %.5f, theta/pi = %.4f); stopping",
+             until_steady_, sim_->state().time, sim_->state().dxy,
+             sim_->state().inclination / M_PI);
   }
 }
 

@@ -471,7 +471,13 @@ Scene LoadScene(const std::string& name_or_path, const std::vector<std::string>&
   if (!in) {
     std::string known;
     for (const auto& n : ListScenes()) known += (known.empty() ? "" : ", ") + n;
-    throw SceneError("scene '" + name_or_path + "': cannot read " + path +
+    std::string where;
+    if (is_path && !path.empty() && path.front() != '/') {
+      std::error_code ec;
+      where = " (a relative path, resolved from " + std::filesystem::current_path(ec).string() +
+              "; roslaunch runs nodes in ROS_HOME: give an absolute path)";
+    }
+    throw SceneError("scene '" + name_or_path + "': cannot read " + path + where +
                      (is_path ? "" : " (shipped scenes: " + known + ")"));
   }
   std::stringstream buffer;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/run returns the node's exit status (roslaunch alone returns 0 whatever its nodes do):
-# 0 for a run that reaches its steps, 1 for a simulation that stops on an error (a capsule
+# 0 for a run that reaches its steps or its steady state (until_steady), 1 for a simulation that stops on an error (a capsule
 # touching the wall, batch run: ~exit_on_error), 1 for an invalid scene.
 set -u
 cd "$(dirname "$0")/../.."
@@ -21,6 +21,7 @@ check() {
   fi
 }
 check 0 steps:=20 set:="{N: 32, M: 32}"
+check 0 until_steady:=1e-2 set:="{N: 32, M: 32}"  # ends on its own at the steady state
 check 1 scene:="$PWD/test/ros/wall_touching.yaml" steps:=100
 check 1 scene:=no_such_scene steps:=10
 exit $fail

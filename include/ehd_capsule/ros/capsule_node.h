@@ -26,6 +26,7 @@
 #include "ehd_capsule/CapsuleState.h"
 #include "ehd_capsule/SimulationConfig.h"
 #include "ehd_capsule/coupling/simulation.h"
+#include "ehd_capsule/coupling/steady_state.h"
 #include "ehd_capsule/scene/scene.h"
 
 namespace ehd::ros_node {
@@ -99,6 +100,8 @@ class CapsuleNode {
   int bag_serial_ = 0;
   bool publish_clock_ = true;     // ~publish_clock: this node owns /clock (with /use_sim_time)
   double throttled_rate_ = 20.0;  // ~throttled_rate, Hz of wall time
+  double until_steady_ = 0.0;     // ~until_steady tolerance, 0: off
+  std::unique_ptr<SteadyStateMonitor> steady_monitor_;
   ros::WallTime last_throttled_;
   long last_throttled_step_ = -1;
 
