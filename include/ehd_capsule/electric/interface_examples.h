@@ -63,8 +63,8 @@ struct InterfaceExample {
 };
 
 // Known names: "1", "2", "3", "3a" (= 3, sigma^+ = 10), "3b" (= 3, sigma^+ = 100), "4", "cfm1",
-// "cfm2", "ellipse", "star", "star_tight", "biconcave". Throws std::invalid_argument for an unknown name (listing
-// them).
+// "cfm2", "ellipse", "star", "star_tight", "biconcave". Throws std::invalid_argument for an unknown
+// name (listing them).
 InterfaceExample MakeInterfaceExample(const std::string& name);
 // Same with the given conductivities (> 0; f and v follow from the exact phi for them).
 InterfaceExample MakeInterfaceExample(const std::string& name, double sigma_minus,
