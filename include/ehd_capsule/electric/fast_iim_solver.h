@@ -151,6 +151,7 @@ class FastIimSolver {
   const FastIimOptions& options() const { return options_; }
   void set_options(const FastIimOptions& options) {
     options_ = options;
+    coarse_.reset();  // the verifying solver is rebuilt with the new options when next needed
     ResetWarmStart();
   }
   // Integral of f^-/sigma^- over Omega^- (cut-cell quadrature) of the last Solve().
