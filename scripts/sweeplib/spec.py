@@ -1,0 +1,470 @@
+"""Sweep files: reading, strict validation and expansion into runs.
+
+A sweep file (YAML, config/sweeps/*.yaml; every key is described in docs/sweeps.md) names a base
+scene, fixed overrides, a grid of parameter values (a product of axes, optionally crossed with
+one group of zipped lists), the stopping rule, what to record and the plots to draw. Every
+problem is a SweepError whose message names the key (as a path, e.g. `grid.product.Ca_E[2]`),
+the value and what is accepted.
+
+Expansion is deterministic: the runs come in the order of the grid (product keys in the order
+written, the zip group last, the last key varying fastest) and each run's name is built from its
+values alone (`Ca=0.04+Ca_E=0.3+case=A`), so a name does not change when the grid is extended.
+"""
+import copy
+import itertools
+import math
+import os
+import re
+
+import yaml
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCENES_DIR = os.path.join(REPO, "config", "scenes")
+
+# Grid keys starting with this prefix are labels (carried into names, the table and plots), not
+# scene keys: `tag.case: [A, B, C]` next to `sigma_r: [1.75, 3.25, 4.75]` in a zip group.
+TAG_PREFIX = "tag."
+
+# Quantities a plot can show. Time series: CSV columns of `ehd_sim run` (theta is the
+# inclination in units of pi). Final values: columns of the summary table.
+SERIES_QUANTITIES = {
+    "dxy": "D_xy",
+    "theta": "theta / pi",
+    "tt_phase": "tank-treading phase (rad)",
+    "area_drift": "area drift",
+    "area": "area / (pi a^2)",
+    "gmres_iterations": "GMRES iterations",
+}
+FINAL_QUANTITIES = {
+    "dxy": "final D_xy",
+    "theta": "final theta / pi",
+    "tt_frequency": "tank-treading frequency f = 4 pi / (k T)",
+    "steady_time": "steady-state time (1/k)",
+    "wall_s": "wall time (s)",
+    "area_drift": "final area drift",
+}
+NAME_VALUE = re.compile(r"^[A-Za-z0-9._-]+$")
+
+
+class SweepError(Exception):
+    """A sweep file problem; the message names the key."""
+
+
+class _Loader(yaml.SafeLoader):
+    """SafeLoader that also reads 1e-3 and 5E+2 as floats (YAML 1.1 wants a dot in the
+    mantissa, so PyYAML would read them as strings; yaml-cpp, which reads the scenes, takes
+    them as numbers)."""
+
+
+_Loader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(r"""^(?:[-+]?(?:[0-9][0-9_]*)\.[0-9_]*(?:[eE][-+]?[0-9]+)?
+                 |[-+]?(?:[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)
+                 |\.[0-9_]+(?:[eE][-+]?[0-9]+)?
+                 |[-+]?\.(?:inf|Inf|INF)
+                 |\.(?:nan|NaN|NAN))$""", re.X),
+    list("-+0123456789."))
+
+
+def load_yaml(path):
+    with open(path) as f:
+        return yaml.load(f, Loader=_Loader)
+
+
+def _is_number(v):
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def _type_name(v):
+    if v is None:
+        return "null"
+    if isinstance(v, bool):
+        return "a boolean"
+    if _is_number(v):
+        return "a number"
+    if isinstance(v, str):
+        return "a string"
+    if isinstance(v, list):
+        return "a list"
+    if isinstance(v, dict):
+        return "a mapping"
+    return type(v).__name__
+
+
+def _check_keys(where, mapping, allowed, required=()):
+    if not isinstance(mapping, dict):
+        raise SweepError("%s: must be a mapping, got %s" % (where or "sweep file",
+                                                            _type_name(mapping)))
+    for k in mapping:
+        if k not in allowed:
+            raise SweepError("%s: unknown key '%s'; accepted keys: %s" % (
+                where or "sweep file", k, ", ".join(sorted(allowed))))
+    for k in required:
+        if k not in mapping:
+            raise SweepError("%s: missing key '%s'" % (where or "sweep file", k))
+
+
+def _path(where, key):
+    return "%s.%s" % (where, key) if where else key
+
+
+def _number(where, v, low=None, high=None, integer=False, low_open=False):
+    """A number (an integer if asked) in [low, high] (low excluded when low_open)."""
+    if not _is_number(v) or (integer and not isinstance(v, int)):
+        raise SweepError("%s: must be %s, got %s (%r)" % (
+            where, "an integer" if integer else "a number", _type_name(v), v))
+    if isinstance(v, float) and not math.isfinite(v):
+        raise SweepError("%s: must be finite, got %r" % (where, v))
+    if low is not None and (v < low or (low_open and v == low)):
+        raise SweepError("%s: %r is out of range: accepted %s%s, %s]" % (
+            where, v, "(" if low_open else "[", low, "inf" if high is None else high))
+    if high is not None and v > high:
+        raise SweepError("%s: %r is out of range: accepted [%s, %s]" % (where, v, low, high))
+    return v
+
+
+def _string(where, v):
+    if not isinstance(v, str) or not v:
+        raise SweepError("%s: must be a non-empty string, got %s (%r)" % (where, _type_name(v), v))
+    return v
+
+
+def _scalar(where, v):
+    if not (_is_number(v) or isinstance(v, (str, bool))):
+        raise SweepError("%s: must be a number, a string or a boolean, got %s" % (
+            where, _type_name(v)))
+    if isinstance(v, float) and not math.isfinite(v):
+        raise SweepError("%s: must be finite, got %r" % (where, v))
+    return v
+
+
+def format_value(v):
+    """The text of a value in run names and tables: shortest round-trip for floats."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    return str(v) if not isinstance(v, float) else repr(v)
+
+
+def _key_name(where, key):
+    if not isinstance(key, str) or not re.match(r"^[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)*$",
+                                                key):
+        raise SweepError("%s: '%s' is not a scene key (letters, digits and _, nested keys "
+                         "joined by '.', e.g. geometry.shape)" % (where, key))
+    return key
+
+
+def _value_list(where, values):
+    if not isinstance(values, list):
+        raise SweepError("%s: must be a list of values, got %s" % (where, _type_name(values)))
+    if not values:
+        raise SweepError("%s: empty list (a grid axis needs at least one value)" % where)
+    seen = set()
+    for i, v in enumerate(values):
+        _scalar("%s[%d]" % (where, i), v)
+        text = format_value(v)
+        if not NAME_VALUE.match(text):
+            raise SweepError("%s[%d]: %r cannot be part of a run name (letters, digits, '.', "
+                             "'_' and '-' only)" % (where, i, v))
+        if text in seen:
+            raise SweepError("%s[%d]: %r appears twice" % (where, i, v))
+        seen.add(text)
+    return values
+
+
+def _flatten(where, mapping, prefix=""):
+    """{'geometry': {'shape': 'x'}, 'N': 64} -> {'geometry.shape': 'x', 'N': 64}."""
+    out = {}
+    for k, v in mapping.items():
+        key = _key_name(where, prefix + str(k))
+        if isinstance(v, dict) and v:
+            out.update(_flatten(where, v, key + "."))
+        else:
+            out[key] = v if isinstance(v, dict) else _scalar(_path(where, key), v)
+    return out
+
+
+def apply_overrides(scene, overrides):
+    """A copy of the scene mapping with dotted-key overrides applied (intermediate mappings are
+    created as needed; a scalar in the way is an error naming the key)."""
+    out = copy.deepcopy(scene)
+    for key, value in overrides.items():
+        node = out
+        parts = key.split(".")
+        for i, part in enumerate(parts[:-1]):
+            if part not in node or node[part] is None:
+                node[part] = {}
+            if not isinstance(node[part], dict):
+                raise SweepError("override %s: '%s' in the base scene is %s, not a mapping" % (
+                    key, ".".join(parts[:i + 1]), _type_name(node[part])))
+            node = node[part]
+        node[parts[-1]] = copy.deepcopy(value)
+    return out
+
+
+def resolve_scene(name, base_dir):
+    """Path of a base scene: a name in config/scenes, or a .yaml path (relative to the sweep
+    file's folder)."""
+    if name.endswith(".yaml") or "/" in name:
+        path = name if os.path.isabs(name) else os.path.join(base_dir, name)
+    else:
+        path = os.path.join(SCENES_DIR, name + ".yaml")
+    if not os.path.isfile(path):
+        raise SweepError("scene: '%s' not found (looked for %s; shipped scenes: %s)" % (
+            name, path, ", ".join(sorted(f[:-5] for f in os.listdir(SCENES_DIR)
+                                         if f.endswith(".yaml")))))
+    return os.path.abspath(path)
+
+
+class Run:
+    """One point of the grid."""
+
+    def __init__(self, index, values, sweep):
+        self.index = index
+        self.values = values  # grid key -> value (tags included), in grid order
+        self.name = "+".join("%s=%s" % (k[len(TAG_PREFIX):] if k.startswith(TAG_PREFIX) else k,
+                                        format_value(v)) for k, v in values.items())
+        overrides = dict(sweep.fixed)
+        overrides.update({k: v for k, v in values.items() if not k.startswith(TAG_PREFIX)})
+        self.scene = apply_overrides(sweep.base_scene, overrides)
+
+    def scene_yaml(self, sweep):
+        header = ("# Written by scripts/sweep: sweep %s, run %s\n# base scene %s with %s\n" % (
+            sweep.name, self.name, os.path.relpath(sweep.scene_path, REPO),
+            ", ".join("%s=%s" % (k, format_value(v)) for k, v in
+                      list(sweep.fixed.items()) + [(k, v) for k, v in self.values.items()
+                                                   if not k.startswith(TAG_PREFIX)])))
+        return header + yaml.safe_dump(self.scene, sort_keys=False, default_flow_style=False)
+
+
+class Plot:
+    def __init__(self, where, spec, grid_keys):
+        _check_keys(where, spec, {"file", "type", "y", "x", "curves", "for_each", "where",
+                                  "title", "logy"}, required=("file", "type", "y"))
+        self.file = _string(_path(where, "file"), spec["file"])
+        if not self.file.endswith(".png"):
+            raise SweepError("%s: '%s' must end in .png" % (_path(where, "file"), self.file))
+        self.type = spec["type"]
+        if self.type not in ("series", "final"):
+            raise SweepError("%s: '%s' is not a plot type; accepted: series (a quantity against "
+                             "t, one curve per run), final (a final value against a grid key)" % (
+                                 _path(where, "type"), self.type))
+        quantities = SERIES_QUANTITIES if self.type == "series" else FINAL_QUANTITIES
+        ys = spec["y"] if isinstance(spec["y"], list) else [spec["y"]]
+        if not ys:
+            raise SweepError("%s: empty list" % _path(where, "y"))
+        for i, y in enumerate(ys):
+            if y not in quantities:
+                raise SweepError("%s: '%s' is not a %s quantity; accepted: %s" % (
+                    _path(where, "y") + ("[%d]" % i if isinstance(spec["y"], list) else ""), y,
+                    self.type, ", ".join(quantities)))
+        self.y = ys
+
+        def grid_key(key_where, k):
+            if k not in grid_keys:
+                raise SweepError("%s: '%s' is not a grid key; grid keys: %s" % (
+                    key_where, k, ", ".join(grid_keys)))
+            return k
+
+        self.x = None
+        if self.type == "final":
+            if "x" not in spec:
+                raise SweepError("%s: missing key 'x' (the grid key on the horizontal axis)"
+                                 % where)
+            self.x = grid_key(_path(where, "x"), spec["x"])
+        elif "x" in spec:
+            raise SweepError("%s: a series plot is against t; 'x' is for type final" % (
+                _path(where, "x")))
+        self.curves = grid_key(_path(where, "curves"), spec["curves"]) if "curves" in spec \
+            else None
+        fe = spec.get("for_each", [])
+        if isinstance(fe, str):
+            fe = [fe]
+        if not isinstance(fe, list):
+            raise SweepError("%s: must be a list of grid keys" % _path(where, "for_each"))
+        self.for_each = [grid_key("%s[%d]" % (_path(where, "for_each"), i), k)
+                         for i, k in enumerate(fe)]
+        w = spec.get("where", {})
+        _check_keys(_path(where, "where"), w, set(grid_keys))
+        self.where = {k: _scalar(_path(_path(where, "where"), k), v) for k, v in w.items()}
+        self.title = _string(_path(where, "title"), spec["title"]) if "title" in spec else ""
+        self.logy = bool(spec.get("logy", False))
+        used = [k for k in [self.x, self.curves] + self.for_each if k]
+        if len(set(used)) != len(used):
+            raise SweepError("%s: x, curves and for_each must be different keys (got %s)" % (
+                where, ", ".join(used)))
+        for k in used:
+            if k in self.where:
+                raise SweepError("%s: '%s' is both selected by where and plotted" % (
+                    _path(where, "where"), k))
+        for template in (self.file, self.title):
+            for field in re.findall(r"\{([^}]*)\}", template):
+                if field not in self.for_each and TAG_PREFIX + field not in self.for_each:
+                    raise SweepError("%s: {%s} in '%s' is not a for_each key (for_each: %s)" % (
+                        where, field, template, ", ".join(self.for_each) or "none"))
+
+
+def fill_template(template, values):
+    """'dxy_{case}_{Ca}.png' with {'tag.case': 'A', 'Ca': 0.04} -> 'dxy_A_0.04.png' (a field
+    is a grid key, a tag without its prefix, or a nested key such as geometry.shape)."""
+    def field(m):
+        name = m.group(1)
+        key = name if name in values else TAG_PREFIX + name
+        return format_value(values[key])
+    return re.sub(r"\{([^}]*)\}", field, template)
+
+
+class Sweep:
+    """A validated sweep file and its runs."""
+
+    TOP_KEYS = {"name", "description", "reference", "scene", "set", "grid", "stop", "record",
+                "plots"}
+
+    def __init__(self, path):
+        self.path = os.path.abspath(path)
+        if not os.path.isfile(self.path):
+            raise SweepError("sweep file %s not found" % path)
+        try:
+            data = load_yaml(self.path)
+        except yaml.YAMLError as e:
+            raise SweepError("sweep file %s is not valid YAML: %s" % (path, e))
+        self.text = open(self.path).read()
+        _check_keys("", data, self.TOP_KEYS, required=("scene", "grid", "stop"))
+        stem = os.path.splitext(os.path.basename(self.path))[0]
+        self.name = _string("name", data.get("name", stem))
+        if not NAME_VALUE.match(self.name):
+            raise SweepError("name: '%s' must be letters, digits, '.', '_' and '-' only" %
+                             self.name)
+        self.description = _string("description", data["description"]) \
+            if "description" in data else ""
+        self.reference = _string("reference", data["reference"]) if "reference" in data else ""
+        self.scene_path = resolve_scene(_string("scene", data["scene"]),
+                                        os.path.dirname(self.path))
+        try:
+            self.base_scene = load_yaml(self.scene_path)
+        except yaml.YAMLError as e:
+            raise SweepError("scene %s is not valid YAML: %s" % (self.scene_path, e))
+        if not isinstance(self.base_scene, dict):
+            raise SweepError("scene %s: not a mapping" % self.scene_path)
+
+        fixed = data.get("set", {}) or {}
+        _check_keys("set", fixed, set(fixed) if isinstance(fixed, dict) else set())
+        self.fixed = _flatten("set", fixed)
+
+        self._read_grid(data["grid"])
+        self._read_stop(data["stop"])
+        self._read_record(data.get("record", {}))
+        plots = data.get("plots", [])
+        if not isinstance(plots, list):
+            raise SweepError("plots: must be a list, got %s" % _type_name(plots))
+        self.plots = [Plot("plots[%d]" % i, p, self.grid_keys) for i, p in enumerate(plots)]
+        files = [p.file for p in self.plots]
+        for f in files:
+            if files.count(f) > 1:
+                raise SweepError("plots: file '%s' appears twice" % f)
+
+        self.runs = []
+        for index, combo in enumerate(itertools.product(*self.axes)):
+            values = {}
+            for part in combo:
+                values.update(part)
+            self.runs.append(Run(index, values, self))
+        names = [r.name for r in self.runs]
+        if len(set(names)) != len(names):  # cannot happen with distinct values; kept as a guard
+            raise SweepError("grid: two runs have the same name")
+
+    def _read_grid(self, grid):
+        _check_keys("grid", grid, {"product", "zip"})
+        if not grid:
+            raise SweepError("grid: empty (give 'product' and/or 'zip')")
+        self.axes = []  # each axis: a list of {key: value} mappings (one per point)
+        self.grid_keys = []
+        product = grid.get("product", {})
+        if not isinstance(product, dict):
+            _bad_mapping("grid.product", product)
+        if "product" in grid and not product:
+            raise SweepError("grid.product: empty (give at least one key with its values)")
+        for key, values in product.items():
+            _key_name("grid.product", key)
+            _value_list("grid.product.%s" % key, values)
+            self.axes.append([{key: v} for v in values])
+            self.grid_keys.append(key)
+        if "zip" in grid:
+            z = grid["zip"]
+            if not isinstance(z, dict):
+                _bad_mapping("grid.zip", z)
+            if not z:
+                raise SweepError("grid.zip: empty (give at least one key with its values)")
+            length = None
+            first = None
+            for key, values in z.items():
+                _key_name("grid.zip", key)
+                _value_list("grid.zip.%s" % key, values)
+                if length is None:
+                    length, first = len(values), key
+                elif len(values) != length:
+                    raise SweepError("grid.zip.%s: %d values, but grid.zip.%s has %d (zipped "
+                                     "lists go together and must have the same length)" % (
+                                         key, len(values), first, length))
+                if key in self.grid_keys:
+                    raise SweepError("grid.zip.%s: also in grid.product" % key)
+                self.grid_keys.append(key)
+            self.axes.append([{k: z[k][i] for k in z} for i in range(length)])
+        for key in self.grid_keys:
+            if key in self.fixed:
+                raise SweepError("grid: '%s' is also fixed in 'set'" % key)
+            if key.startswith(TAG_PREFIX) and key.count(".") != 1:
+                raise SweepError("grid: tag '%s' must be one word after '%s'" % (key, TAG_PREFIX))
+        for key in self.fixed:
+            if key.startswith(TAG_PREFIX):
+                raise SweepError("set.%s: tags belong in the grid" % key)
+
+    def _read_stop(self, stop):
+        _check_keys("stop", stop, {"t_end", "steady"}, required=("t_end",))
+        self.t_end = float(_number("stop.t_end", stop["t_end"], low=0, low_open=True))
+        self.steady = float(_number("stop.steady", stop["steady"], low=0, high=1,
+                                    low_open=True)) if "steady" in stop else None
+
+    def _read_record(self, record):
+        record = record or {}
+        _check_keys("record", record, {"csv_every", "checkpoint_every", "vtk_final",
+                                       "keep_checkpoint", "steady_tolerance"})
+        self.csv_every = _number("record.csv_every", record.get("csv_every", 100), low=1,
+                                 integer=True)
+        # A chunk is one ehd_sim process; the steady rule is checked at chunk ends, so a sweep
+        # that stops at the steady state uses short chunks by default.
+        default_chunk = min(self.t_end, 1.0 if self.steady is not None else 10.0)
+        self.checkpoint_every = float(_number(
+            "record.checkpoint_every", record.get("checkpoint_every", default_chunk), low=0,
+            low_open=True))
+        self.vtk_final = record.get("vtk_final", False)
+        if not isinstance(self.vtk_final, bool):
+            raise SweepError("record.vtk_final: must be true or false, got %r" % self.vtk_final)
+        self.keep_checkpoint = record.get("keep_checkpoint", False)
+        if not isinstance(self.keep_checkpoint, bool):
+            raise SweepError("record.keep_checkpoint: must be true or false, got %r" %
+                             self.keep_checkpoint)
+        default_tol = self.steady if self.steady is not None else 1e-3
+        self.steady_tolerance = float(_number("record.steady_tolerance",
+                                              record.get("steady_tolerance", default_tol), low=0,
+                                              high=1, low_open=True))
+
+    def chunk_ends(self):
+        """The simulation times at which each chunk (one ehd_sim process) ends and writes a
+        checkpoint: checkpoint_every, 2 checkpoint_every, ..., t_end."""
+        ends = []
+        k = 1
+        while k * self.checkpoint_every < self.t_end * (1 - 1e-12):
+            ends.append(round(k * self.checkpoint_every, 12))
+            k += 1
+        ends.append(self.t_end)
+        return ends
+
+    def run_settings(self):
+        """What, besides the scene, decides a run's result (compared on resume)."""
+        return {"t_end": self.t_end, "steady": self.steady, "csv_every": self.csv_every,
+                "checkpoint_every": self.checkpoint_every,
+                "steady_tolerance": self.steady_tolerance}
+
+
+def _bad_mapping(where, v):
+    raise SweepError("%s: must be a mapping of key: [values], got %s" % (where, _type_name(v)))
