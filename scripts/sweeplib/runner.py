@@ -276,7 +276,7 @@ def _execute_locked(sweep, run, out, folder, ehd_sim, threads, retry_failed):
             os.replace(csv_tmp, os.path.join(chunks, "%d.csv" % k))
         if proc.returncode != 0:
             text = _tail(log_path)
-            error = _last_error(text) or (
+            error = _last_error(text).replace(folder + os.sep, "") or (
                 "ehd_sim killed by signal %d" % -proc.returncode if proc.returncode < 0
                 else "ehd_sim exited %d" % proc.returncode)
             stopped = "error"
