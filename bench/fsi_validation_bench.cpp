@@ -103,7 +103,7 @@ RunResult Run(const std::string& scene, std::vector<std::string> overrides, doub
   std::vector<double> ts, ds;
   try {
     Simulation sim(ehd::LoadScene(scene, overrides));
-    const ehd::ClosedCurve reference(sim.state().markers);
+    const ehd::ClosedCurve reference(sim.state().markers.topRows<2>());
     ehd::SteadyStateMonitor monitor(tol);
     ehd::TankTreadingTracker tracker(0);
     const double k = sim.units().shear_rate;
@@ -118,19 +118,21 @@ RunResult Run(const std::string& scene, std::vector<std::string> overrides, doub
       if (s.step % sample_every == 0) {
         ts.push_back(s.time);
         ds.push_back(s.dxy);
-        const ehd::ShapeDiagnostics d = ehd::MeasureShape(ehd::ClosedCurve(s.markers));
-        tracker.Update(s.time, s.markers, d.centroid, s.inclination);
+        const Eigen::Matrix2Xd x = s.markers.topRows<2>();
+        const ehd::ShapeDiagnostics d = ehd::MeasureShape(ehd::ClosedCurve(x));
+        tracker.Update(s.time, x, d.centroid, s.inclination);
       }
-      if (s.step % check_every == 0 && !r.crossed) r.crossed = SelfIntersects(s.markers);
+      if (s.step % check_every == 0 && !r.crossed)
+        r.crossed = SelfIntersects(s.markers.topRows<2>());
       if (need_steady && monitor.Update(s.time, s.dxy, s.inclination)) {
         r.steady = true;
         break;
       }
     }
-    const Eigen::Matrix2Xd before = sim.state().markers;
+    const Eigen::Matrix2Xd before = sim.state().markers.topRows<2>();
     sim.Step();
     const auto& s = sim.state();
-    r.f = TankTreadingFrequency(before, s.markers, k);
+    r.f = TankTreadingFrequency(before, s.markers.topRows<2>(), k);
     r.dxy = s.dxy;
     r.theta = s.inclination;
     r.time = s.time;
@@ -139,9 +141,9 @@ RunResult Run(const std::string& scene, std::vector<std::string> overrides, doub
     r.tumbling = tracker.tumbling();
     r.flips = tracker.flips();
     r.late_flips = flips_at_half < 0 ? 0 : r.flips - flips_at_half;
-    r.crossed = r.crossed || SelfIntersects(s.markers);
+    r.crossed = r.crossed || SelfIntersects(s.markers.topRows<2>());
     {
-      const ehd::ClosedCurve c(s.markers);
+      const ehd::ClosedCurve c(s.markers.topRows<2>());
       double sum = 0.0;
       r.stretch_min = 1e300;
       r.stretch_max = 0.0;

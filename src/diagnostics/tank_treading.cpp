@@ -36,18 +36,25 @@ void TankTreadingTracker::Update(double time, const Eigen::Matrix2Xd& markers,
                                 std::to_string(tracked_marker_) + " but only " +
                                 std::to_string(markers.cols()) + " markers");
   }
+  UpdateRelative(time, markers.col(tracked_marker_) - centroid, inclination);
+}
+
+void TankTreadingTracker::UpdateRelative(double time, const Eigen::Vector2d& r,
+                                         double inclination) {
   if (samples_ > 0 && !(time > t_)) {
     throw std::invalid_argument("TankTreadingTracker: time must increase (got " +
                                 std::to_string(time) + " after " + std::to_string(t_) + ")");
   }
-  const Eigen::Vector2d r = markers.col(tracked_marker_) - centroid;
   const double angle = std::atan2(r.y(), r.x());
   if (samples_ == 0) {
     t0_ = t_ = time;
     phase0_ = phase_ = angle;
     last_crossing_time_ = time;
   } else {
-    const double new_phase = phase_ + WrapDifference(angle, phase_, kTwoPi);
+    double turn = angle - last_angle_;
+    if (turn > kPi) turn -= kTwoPi;
+    if (turn < -kPi) turn += kTwoPi;
+    const double new_phase = phase_ + turn;
     // Crossing of phase0 + 2 pi n between the two samples (either direction).
     const double before = (phase_ - phase0_) / kTwoPi, after = (new_phase - phase0_) / kTwoPi;
     const int turns_before = static_cast<int>(std::trunc(before));
@@ -62,6 +69,7 @@ void TankTreadingTracker::Update(double time, const Eigen::Matrix2Xd& markers,
     phase_ = new_phase;
     t_ = time;
   }
+  last_angle_ = angle;
   ++samples_;
   if (std::isfinite(inclination)) {
     theta_ =
@@ -70,6 +78,38 @@ void TankTreadingTracker::Update(double time, const Eigen::Matrix2Xd& markers,
     if (flips > flips_) flips_ = flips;
     if (theta_ < -0.5 * kPi || theta_ > 0.5 * kPi) tumbling_ = true;
   }
+}
+
+TankTreadingTracker::Snapshot TankTreadingTracker::snapshot() const {
+  Snapshot s;
+  s.samples = samples_;
+  s.t0 = t0_;
+  s.t = t_;
+  s.phase0 = phase0_;
+  s.phase = phase_;
+  s.last_angle = last_angle_;
+  s.revolutions = revolutions_;
+  s.last_crossing_time = last_crossing_time_;
+  s.period = period_;
+  s.theta = theta_;
+  s.tumbling = tumbling_ ? 1 : 0;
+  s.flips = flips_;
+  return s;
+}
+
+void TankTreadingTracker::Restore(const Snapshot& s) {
+  samples_ = s.samples;
+  t0_ = s.t0;
+  t_ = s.t;
+  phase0_ = s.phase0;
+  phase_ = s.phase;
+  last_angle_ = s.last_angle;
+  revolutions_ = s.revolutions;
+  last_crossing_time_ = s.last_crossing_time;
+  period_ = s.period;
+  theta_ = s.theta;
+  tumbling_ = s.tumbling != 0;
+  flips_ = s.flips;
 }
 
 double TankTreadingTracker::frequency(double shear_rate) const {

@@ -52,7 +52,7 @@ TEST(Simulation, PipelineHasOnlyWhatTheSceneNeeds) {
   EXPECT_FALSE(plain.has_viscosity_contrast());
   EXPECT_EQ(plain.state().electric_force.cols(), 0);  // no electric buffers
   EXPECT_TRUE(plain.potential().empty());
-  EXPECT_NE(plain.Pipeline().find("electric: none"), std::string::npos) << plain.Pipeline();
+  EXPECT_NE(plain.Pipeline().find("not built: electric"), std::string::npos) << plain.Pipeline();
   EXPECT_EQ(plain.Pipeline().find("bending"), std::string::npos) << plain.Pipeline();
   EXPECT_EQ(plain.Pipeline().find("Heaviside"), std::string::npos) << plain.Pipeline();
   plain.Step();
@@ -224,11 +224,51 @@ TEST(Simulation, CheckpointRestartIsBitForBit) {
 
 TEST(Simulation, ResetReturnsToTheInitialState) {
   Simulation sim(ParseScene(kTinyCapsule));
-  const Eigen::Matrix2Xd x0 = sim.state().markers;
+  const Eigen::Matrix3Xd x0 = sim.state().markers;
   for (int i = 0; i < 5; ++i) sim.Step();
   sim.Reset();
   EXPECT_EQ(sim.state().step, 0);
   EXPECT_TRUE((sim.state().markers.array() == x0.array()).all());
+}
+
+// After Reset the run repeats a newly built one bit for bit, also with the stages that keep
+// history (viscosity contrast band, Kelvin-Voigt, AB2, electric warm start, tank-treading).
+TEST(Simulation, ResetRunRepeatsAFreshRun) {
+  const Scene scene =
+      ParseScene(kTinyCapsule, {"eta=1", "V=2", "Ca_E=0.2", "sigma_r=1.75", "eps_r=3.5",
+                                "numerics.integrator=adams_bashforth2"});
+  Simulation fresh(scene), reset(scene);
+  for (int i = 0; i < 9; ++i) reset.Step();
+  reset.Reset();
+  for (int i = 0; i < 6; ++i) {
+    fresh.Step();
+    reset.Step();
+  }
+  EXPECT_TRUE((fresh.state().markers.array() == reset.state().markers.array()).all());
+  EXPECT_EQ(fresh.ux(), reset.ux());
+  EXPECT_EQ(fresh.state().tt_phase, reset.state().tt_phase);
+  EXPECT_EQ(fresh.state().dxy, reset.state().dxy);
+}
+
+// The printed pipeline lists the stages in run order and names those not built.
+TEST(Simulation, PipelineListsStagesInRunOrder) {
+  Simulation full(ParseScene(kTinyCapsule, {"V=2", "Ca_E=0.2", "sigma_r=1.75", "eps_r=3.5"}));
+  const std::string p = full.Pipeline();
+  const char* order[] = {"1. electric:", "2. membrane:", "3. spread:",     "4. viscosity:",
+                         "5. fluid:",    "6. markers:",  "7. diagnostics:"};
+  std::size_t at = 0;
+  for (const char* label : order) {
+    const std::size_t found = p.find(label);
+    ASSERT_NE(found, std::string::npos) << label << " in\n" << p;
+    EXPECT_GT(found, at) << label;
+    at = found;
+  }
+  EXPECT_EQ(p.find("not built"), std::string::npos) << p;
+  Simulation plain(ParseScene(kTinyCapsule));
+  EXPECT_NE(plain.Pipeline().find("not built: electric (no field in the scene), viscosity (V = 1)"),
+            std::string::npos)
+      << plain.Pipeline();
+  EXPECT_NE(plain.Pipeline().find("4. markers:"), std::string::npos) << plain.Pipeline();
 }
 
 }  // namespace

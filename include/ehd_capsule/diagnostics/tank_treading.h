@@ -13,7 +13,9 @@
 // tumbles when the unwrapped theta leaves [-pi/2, pi/2] (it passes -pi/2 for k > 0), i.e. the
 // long axis turns through the vertical instead of settling at a steady angle.
 // Samples must be taken often enough that the marker turns by less than pi and theta by less than
-// pi/2 between updates.
+// pi/2 between updates. The phase is unwrapped from the raw angle difference of two samples
+// (turn = angle - last angle, brought into [-pi, pi]), not from the accumulated phase, so it loses
+// no precision as |phase| grows.
 #pragma once
 
 #include <Eigen/Core>
@@ -29,6 +31,10 @@ class TankTreadingTracker {
   // (finite), also unwraps it for tumbling detection. Times must increase.
   void Update(double time, const Eigen::Matrix2Xd& markers, const Eigen::Vector2d& centroid,
               double inclination = std::numeric_limits<double>::quiet_NaN());
+  // The same from the tracked point's position relative to the centroid, projected on the shear
+  // plane (x, y): what a 3D surface passes for its material vertex.
+  void UpdateRelative(double time, const Eigen::Vector2d& relative_position,
+                      double inclination = std::numeric_limits<double>::quiet_NaN());
 
   int tracked_marker() const { return tracked_marker_; }
   // Unwrapped angle of the tracked marker about the centroid (tt_phase), radians.
@@ -49,11 +55,23 @@ class TankTreadingTracker {
   // Number of half turns of the long axis (flips through the vertical) so far.
   int flips() const { return flips_; }
 
+  // Everything the tracker has accumulated, for checkpoints (restored bit-for-bit).
+  struct Snapshot {
+    int samples = 0;
+    double t0 = 0, t = 0, phase0 = 0, phase = 0, last_angle = 0;
+    int revolutions = 0;
+    double last_crossing_time = 0, period = 0, theta = 0;
+    int tumbling = 0, flips = 0;
+  };
+  Snapshot snapshot() const;
+  void Restore(const Snapshot& s);
+
  private:
   int tracked_marker_;
   int samples_ = 0;
   double t0_ = 0.0, t_ = 0.0;
   double phase0_ = 0.0, phase_ = 0.0;
+  double last_angle_ = 0.0;  // raw angle of the last sample, in (-pi, pi]
   int revolutions_ = 0;
   double last_crossing_time_ = std::numeric_limits<double>::quiet_NaN();
   double period_ = std::numeric_limits<double>::quiet_NaN();

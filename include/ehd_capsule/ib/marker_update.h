@@ -41,6 +41,18 @@ class MarkerAdvector {
   // Forgets the previous velocity (e.g. after remeshing); the next step is Euler.
   void Reset() { has_previous_ = false; }
 
+  // The previous velocity AB2 combines with the next one (checkpoints, re-spacing of markers).
+  bool has_previous_velocity() const { return has_previous_; }
+  const Eigen::Matrix2Xd& previous_velocity() const { return previous_velocity_; }
+  // nullptr when there is none; the caller may resample it in place (same marker count).
+  Eigen::Matrix2Xd* mutable_previous_velocity() {
+    return has_previous_ ? &previous_velocity_ : nullptr;
+  }
+  void SetPreviousVelocity(const Eigen::Matrix2Xd& velocity, bool has_previous) {
+    previous_velocity_ = velocity;
+    has_previous_ = has_previous;
+  }
+
  private:
   MarkerIntegrator scheme_;
   bool has_previous_ = false;

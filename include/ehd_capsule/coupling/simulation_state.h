@@ -1,0 +1,30 @@
+// What a simulation publishes after each step, the same type in 2D and 3D: the node, the CSV and
+// VTK writers and the CLI read only this (and Simulation's field accessors).
+//
+// Points are 3-vectors in both dimensions: in 2D the membrane markers lie in the plane z = 0 (the
+// shear plane x-y), in 3D they are the surface vertices. Lattice units, centred on the domain.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace ehd {
+
+struct SimulationState {
+  int dimension = 2;
+  long step = 0;
+  double time = 0;                                // units of 1/k with shear (sum of k dt)
+  Eigen::Matrix3Xd markers;                       // membrane points (2D: z = 0)
+  Eigen::Matrix3Xd electric_force;                // per unit length (2D) or area (3D) per point;
+                                                  // empty without field
+  Eigen::Vector3d electric_force_total{0, 0, 0};  // sum F_E dl (2D) or F_E dA (3D)
+  double dxy = 0, inclination = 0;  // Taylor deformation, inclination in the shear plane
+  double area = 0;                  // enclosed area (2D); 3D: the enclosed volume
+  double area_drift = 0;            // area / initial area - 1
+  double tt_phase = 0;              // unwrapped angle of material point 0 about the centroid (rad)
+  double ca = 0, ca_e = 0;
+  int gmres_iterations = 0;
+  double gmres_residual = 0;
+  double max_mach = 0;
+};
+
+}  // namespace ehd
