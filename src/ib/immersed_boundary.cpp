@@ -1,4 +1,5 @@
-// song2019 eqs. (104) and (106) with the cosine kernel (103); see immersed_boundary.h.
+// song2019 eqs. (104) and (106) with the cosine kernel (103) as a tensor product in 2 or 3
+// dimensions; see immersed_boundary.h.
 #include "ehd_capsule/ib/immersed_boundary.h"
 
 #include <stdexcept>
@@ -9,91 +10,134 @@
 namespace ehd {
 namespace {
 
-void CheckField(const Grid2D& grid, const std::vector<double>& f, const char* name) {
+template <int D>
+void CheckField(const Grid<D>& grid, const std::vector<double>& f, int component) {
   if (f.size() != grid.size()) {
-    throw std::invalid_argument(std::string("ImmersedBoundary: field ") + name + " has " +
-                                std::to_string(f.size()) + " entries, grid has " +
+    throw std::invalid_argument("ImmersedBoundary: field component " + std::to_string(component) +
+                                " has " + std::to_string(f.size()) + " entries, grid has " +
                                 std::to_string(grid.size()));
   }
 }
 
 }  // namespace
 
-ImmersedBoundary::ImmersedBoundary(const Grid2D& grid, bool periodic_x, bool periodic_y)
-    : grid_(grid), periodic_x_(periodic_x), periodic_y_(periodic_y) {
-  if (grid.nx < 4 || grid.ny < 4 || !(grid.h > 0.0)) {
-    throw std::invalid_argument(
-        "ImmersedBoundary: grid needs nx, ny >= 4 and h > 0 (got nx=" + std::to_string(grid.nx) +
-        ", ny=" + std::to_string(grid.ny) + ", h=" + std::to_string(grid.h) + ")");
+template <int D>
+ImmersedBoundaryTransfer<D>::ImmersedBoundaryTransfer(const Grid<D>& grid,
+                                                      const std::array<bool, D>& periodic)
+    : grid_(grid), periodic_(periodic) {
+  bool ok = grid.h > 0.0;
+  std::string extents;
+  for (int a = 0; a < D; ++a) {
+    ok = ok && grid.extent(a) >= 4;
+    extents += (a ? ", " : "") + std::string(1, "xyz"[a]) + "=" + std::to_string(grid.extent(a));
+  }
+  if (!ok) {
+    throw std::invalid_argument("ImmersedBoundary: grid needs every extent >= 4 and h > 0 (got n" +
+                                extents + ", h=" + std::to_string(grid.h) + ")");
   }
 }
 
-void ImmersedBoundary::Interpolate(const std::vector<double>& ux, const std::vector<double>& uy,
-                                   const Eigen::Matrix2Xd& X, Eigen::Matrix2Xd& U) const {
-  CheckField(grid_, ux, "ux");
-  CheckField(grid_, uy, "uy");
+template <int D>
+void ImmersedBoundaryTransfer<D>::Interpolate(const std::array<const std::vector<double>*, D>& u,
+                                              const Points& X, Points& U) const {
+  for (int d = 0; d < D; ++d) CheckField(grid_, *u[d], d);
   const Eigen::Index m = X.cols();
-  if (U.cols() != m) U.resize(2, m);
+  if (U.cols() != m) U.resize(D, m);
   const double inv_h = 1.0 / grid_.h;
-  const int nx = grid_.nx, ny = grid_.ny;
-  const double* __restrict ux_p = ux.data();
-  const double* __restrict uy_p = uy.data();
+  const int nx = grid_.extent(0), ny = grid_.extent(1);
+  const int nz = D == 3 ? grid_.extent(D - 1) : 1;
+  const double* __restrict up[D];
+  for (int d = 0; d < D; ++d) up[d] = u[d]->data();
   for (Eigen::Index c = 0; c < m; ++c) {
-    // Node i sits at x0 + (i + 1/2) h, so the fractional node coordinate is (x - x0)/h - 1/2.
-    const DeltaStencil sx = CosineDeltaStencil((X(0, c) - grid_.x0) * inv_h - 0.5);
-    const DeltaStencil sy = CosineDeltaStencil((X(1, c) - grid_.y0) * inv_h - 0.5);
-    int ix[4];
-    for (int a = 0; a < 4; ++a) ix[a] = WrapIndex(sx.first + a, nx, periodic_x_);
-    double u = 0.0, v = 0.0;
-    for (int b = 0; b < 4; ++b) {
-      const int j = WrapIndex(sy.first + b, ny, periodic_y_);
-      if (j < 0) continue;
-      const std::size_t row = static_cast<std::size_t>(j) * static_cast<std::size_t>(nx);
-      double ru = 0.0, rv = 0.0;
-      for (int a = 0; a < 4; ++a) {
-        if (ix[a] < 0) continue;
-        ru += sx.weight[a] * ux_p[row + ix[a]];
-        rv += sx.weight[a] * uy_p[row + ix[a]];
-      }
-      u += sy.weight[b] * ru;
-      v += sy.weight[b] * rv;
+    // Node i sits at origin + (i + 1/2) h, so the fractional node coordinate is (x - o)/h - 1/2.
+    DeltaStencil s[D];
+    for (int a = 0; a < D; ++a) {
+      s[a] = CosineDeltaStencil((X(a, c) - grid_.origin(a)) * inv_h - 0.5);
     }
-    U(0, c) = u;
-    U(1, c) = v;
+    int ix[4];
+    for (int a = 0; a < 4; ++a) ix[a] = WrapIndex(s[0].first + a, nx, periodic_[0]);
+    double total[D] = {};
+    for (int zc = 0; zc < (D == 3 ? 4 : 1); ++zc) {
+      std::size_t plane = 0;
+      if constexpr (D == 3) {
+        const int k = WrapIndex(s[D - 1].first + zc, nz, periodic_[D - 1]);
+        if (k < 0) continue;
+        plane = static_cast<std::size_t>(k) * static_cast<std::size_t>(ny) *
+                static_cast<std::size_t>(nx);
+      }
+      double in_plane[D] = {};
+      for (int b = 0; b < 4; ++b) {
+        const int j = WrapIndex(s[1].first + b, ny, periodic_[1]);
+        if (j < 0) continue;
+        const std::size_t row = plane + static_cast<std::size_t>(j) * static_cast<std::size_t>(nx);
+        double in_row[D] = {};
+        for (int a = 0; a < 4; ++a) {
+          if (ix[a] < 0) continue;
+          for (int d = 0; d < D; ++d) in_row[d] += s[0].weight[a] * up[d][row + ix[a]];
+        }
+        for (int d = 0; d < D; ++d) in_plane[d] += s[1].weight[b] * in_row[d];
+      }
+      if constexpr (D == 3) {
+        for (int d = 0; d < D; ++d) total[d] += s[D - 1].weight[zc] * in_plane[d];
+      } else {
+        for (int d = 0; d < D; ++d) total[d] = in_plane[d];
+      }
+    }
+    for (int d = 0; d < D; ++d) U(d, c) = total[d];
   }
 }
 
-void ImmersedBoundary::Spread(const Eigen::Matrix2Xd& X, const Eigen::Matrix2Xd& F,
-                              std::vector<double>& fx, std::vector<double>& fy) const {
-  CheckField(grid_, fx, "fx");
-  CheckField(grid_, fy, "fy");
+template <int D>
+void ImmersedBoundaryTransfer<D>::Spread(const Points& X, const Points& F,
+                                         const std::array<std::vector<double>*, D>& f) const {
+  for (int d = 0; d < D; ++d) CheckField(grid_, *f[d], d);
   if (F.cols() != X.cols()) {
     throw std::invalid_argument("ImmersedBoundary::Spread: " + std::to_string(F.cols()) +
-                                " forces for " + std::to_string(X.cols()) + " markers");
+                                " forces for " + std::to_string(X.cols()) + " points");
   }
   const double inv_h = 1.0 / grid_.h;
-  const double inv_h2 = inv_h * inv_h;
-  const int nx = grid_.nx, ny = grid_.ny;
-  double* __restrict fx_p = fx.data();
-  double* __restrict fy_p = fy.data();
+  double inv_volume = inv_h * inv_h;  // 1 / h^D
+  if constexpr (D == 3) inv_volume *= inv_h;
+  const int nx = grid_.extent(0), ny = grid_.extent(1);
+  const int nz = D == 3 ? grid_.extent(D - 1) : 1;
+  double* __restrict fp[D];
+  for (int d = 0; d < D; ++d) fp[d] = f[d]->data();
   for (Eigen::Index c = 0; c < X.cols(); ++c) {
-    const DeltaStencil sx = CosineDeltaStencil((X(0, c) - grid_.x0) * inv_h - 0.5);
-    const DeltaStencil sy = CosineDeltaStencil((X(1, c) - grid_.y0) * inv_h - 0.5);
+    DeltaStencil s[D];
+    for (int a = 0; a < D; ++a) {
+      s[a] = CosineDeltaStencil((X(a, c) - grid_.origin(a)) * inv_h - 0.5);
+    }
     int ix[4];
-    for (int a = 0; a < 4; ++a) ix[a] = WrapIndex(sx.first + a, nx, periodic_x_);
-    const double gx = F(0, c) * inv_h2, gy = F(1, c) * inv_h2;
-    for (int b = 0; b < 4; ++b) {
-      const int j = WrapIndex(sy.first + b, ny, periodic_y_);
-      if (j < 0) continue;
-      const std::size_t row = static_cast<std::size_t>(j) * static_cast<std::size_t>(nx);
-      for (int a = 0; a < 4; ++a) {
-        if (ix[a] < 0) continue;
-        const double w = sx.weight[a] * sy.weight[b];
-        fx_p[row + ix[a]] += w * gx;
-        fy_p[row + ix[a]] += w * gy;
+    for (int a = 0; a < 4; ++a) ix[a] = WrapIndex(s[0].first + a, nx, periodic_[0]);
+    double g[D];
+    for (int d = 0; d < D; ++d) g[d] = F(d, c) * inv_volume;
+    for (int zc = 0; zc < (D == 3 ? 4 : 1); ++zc) {
+      std::size_t plane = 0;
+      double wz = 1.0;
+      if constexpr (D == 3) {
+        const int k = WrapIndex(s[D - 1].first + zc, nz, periodic_[D - 1]);
+        if (k < 0) continue;
+        plane = static_cast<std::size_t>(k) * static_cast<std::size_t>(ny) *
+                static_cast<std::size_t>(nx);
+        wz = s[D - 1].weight[zc];
+      }
+      for (int b = 0; b < 4; ++b) {
+        const int j = WrapIndex(s[1].first + b, ny, periodic_[1]);
+        if (j < 0) continue;
+        const std::size_t row = plane + static_cast<std::size_t>(j) * static_cast<std::size_t>(nx);
+        // 2D: w = phi_x phi_y exactly as before; 3D: phi_x (phi_y phi_z).
+        const double wyz = D == 3 ? s[1].weight[b] * wz : s[1].weight[b];
+        for (int a = 0; a < 4; ++a) {
+          if (ix[a] < 0) continue;
+          const double w = s[0].weight[a] * wyz;
+          for (int d = 0; d < D; ++d) fp[d][row + ix[a]] += w * g[d];
+        }
       }
     }
   }
 }
+
+template class ImmersedBoundaryTransfer<2>;
+template class ImmersedBoundaryTransfer<3>;
 
 }  // namespace ehd
