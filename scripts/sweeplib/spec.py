@@ -71,6 +71,10 @@ def load_yaml(path):
         return yaml.load(f, Loader=_Loader)
 
 
+def load_yaml_text(text):
+    return yaml.load(text, Loader=_Loader)
+
+
 def _is_number(v):
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
@@ -319,7 +323,9 @@ class Sweep:
     TOP_KEYS = {"name", "description", "reference", "scene", "set", "grid", "stop", "record",
                 "plots"}
 
-    def __init__(self, path):
+    def __init__(self, path, extra_set=None, t_end=None):
+        """extra_set: overrides from the command line (`--set N=64`), added to the file's `set`
+        (and replacing its values); t_end: replaces stop.t_end (`--t-end`)."""
         self.path = os.path.abspath(path)
         if not os.path.isfile(self.path):
             raise SweepError("sweep file %s not found" % path)
@@ -349,6 +355,17 @@ class Sweep:
         fixed = data.get("set", {}) or {}
         _check_keys("set", fixed, set(fixed) if isinstance(fixed, dict) else set())
         self.fixed = _flatten("set", fixed)
+        self.variant = []  # the command-line changes, in the default output folder's name
+        for key, value in (extra_set or {}).items():
+            _key_name("--set", key)
+            self.fixed[key] = _scalar("--set %s" % key, value)
+            self.variant.append("%s=%s" % (key, format_value(value)))
+        if t_end is not None:
+            stop = data.get("stop")
+            if isinstance(stop, dict):
+                stop = dict(stop, t_end=t_end)
+                data["stop"] = stop
+            self.variant.append("t_end=%s" % format_value(t_end))
 
         self._read_grid(data["grid"])
         self._read_stop(data["stop"])

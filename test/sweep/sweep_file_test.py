@@ -91,6 +91,16 @@ def main():
                 failures += 1
             else:
                 print("ok: %s -> %s" % (what, text.strip().split(": ", 2)[-1]))
+        # A bad value of a key every run shares (here from --set) stops the sweep before it
+        # starts, naming the key; the same bad value on a grid key is one failed run instead.
+        proc = subprocess.run([SWEEP, os.path.join(HERE, "tiny.yaml"), "--set", "N=8",
+                               "--check", "--ehd-sim", args.ehd_sim], capture_output=True,
+                              text=True)
+        if proc.returncode != 2 or "'N' = 8 is out of range" not in proc.stderr:
+            print("FAIL: --set N=8: exit %d: %s" % (proc.returncode, proc.stderr.strip()))
+            failures += 1
+        else:
+            print("ok: --set N=8 -> " + proc.stderr.strip().split(": ", 2)[-1])
         proc = subprocess.run([SWEEP, os.path.join(HERE, "tiny.yaml"), "--list"],
                               capture_output=True, text=True)
         if "   4  Ca_E=5+sigma_r=1.75+case=A" not in proc.stdout:
