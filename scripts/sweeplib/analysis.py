@@ -61,13 +61,27 @@ def steady_time(rows, tolerance, window=STEADY_WINDOW, floor=DXY_FLOOR):
 
 def tank_treading_frequency(rows):
     """f = 4 pi / (k T) (song2019 sec. 5.1, Figs. 49-51; T the period of a membrane point's
-    turn), from the mean rate of the CSV column tt_phase (the unwrapped angle of one material
-    marker about the centroid): f = 2 |d tt_phase / dt| with t in units of 1/k. Least-squares
-    slope over the second half of the run; None if the run covers less than one unit of
-    time."""
+    turn) from the CSV column tt_phase (the unwrapped angle of one material marker about the
+    centroid), t in units of 1/k: f = 2 |mean d tt_phase / dt|. A point on an elongated
+    membrane does not turn at a uniform rate, so the mean is taken over whole turns: the last
+    complete turn(s) of the second half of the run, or the last complete turn if the second half
+    holds less than one. A run with less than one turn in all gets the least-squares slope
+    over its second half (an estimate biased by the non-uniform rate). None if the run covers
+    less than one unit of time."""
     if len(rows) < 3 or rows[-1]["t"] - rows[0]["t"] < 1.0:
         return None
-    t_half = 0.5 * (rows[0]["t"] + rows[-1]["t"])
+    turn = 2.0 * math.pi
+    end_t, end_phase = rows[-1]["t"], rows[-1]["tt_phase"]
+    t_half = 0.5 * (rows[0]["t"] + end_t)
+    half_phase = next(r["tt_phase"] for r in rows if r["t"] >= t_half)
+    turns = max(1, int(abs(end_phase - half_phase) // turn))
+    start = None
+    for r in reversed(rows):  # latest sample that is `turns` whole turns before the end
+        if abs(end_phase - r["tt_phase"]) >= turns * turn:
+            start = r
+            break
+    if start is not None and end_t > start["t"]:
+        return 2.0 * abs(end_phase - start["tt_phase"]) / (end_t - start["t"])
     tail = [r for r in rows if r["t"] >= t_half]
     if len(tail) < 2:
         return None

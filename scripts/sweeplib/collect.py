@@ -40,6 +40,13 @@ def rows_of(sweep, out):
             started = os.path.exists(os.path.join(runner.run_dir(out, run), "scene.yaml"))
             s = {"status": "running (t = %s)" % format_value(t) if started else "not run",
                  "stopped": "", "error": ""}
+        else:
+            # The derived values are recomputed from the series, so a table always follows the
+            # current definitions (analysis.py), also for runs finished by an older version.
+            series = os.path.join(runner.run_dir(out, run), "series.csv")
+            if os.path.exists(series):
+                s = dict(s, **analysis.final_values(analysis.read_series(series),
+                                                    sweep.steady_tolerance))
         row = {"run": run.name, "_run": run}
         row.update(run.values)
         row.update({k: v for k, v in s.items() if k not in ("parameters", "run")})
@@ -173,10 +180,23 @@ def draw_plots(sweep, out, rows):
             fig.suptitle(title, fontsize=10)
             fig.tight_layout()
             path = os.path.join(folder, name)
-            fig.savefig(path, dpi=110)
+            fig.savefig(path, dpi=100)
             plt.close(fig)
+            _shrink_png(path)
             written.append(path)
     return written
+
+
+def _shrink_png(path):
+    """Re-saves a figure with an adaptive 256-colour palette (a third of the size, no visible
+    difference for line plots); left as it is if Pillow is missing."""
+    try:
+        from PIL import Image
+    except ImportError:
+        return
+    with Image.open(path) as im:
+        small = im.convert("RGB").quantize(colors=256)
+    small.save(path, optimize=True)
 
 
 def _curve_labels(plot, sweep, selected):
