@@ -32,7 +32,7 @@
 #include "ehd_capsule/geometry/initial_shapes.h"
 #include "ehd_capsule/ib/immersed_boundary.h"
 #include "ehd_capsule/ib/marker_update.h"
-#include "ehd_capsule/lbm/lattice_boltzmann_2d.h"
+#include "ehd_capsule/lbm/lattice_boltzmann.h"
 #include "ehd_capsule/membrane/membrane_model.h"
 #include "ehd_capsule/scene/scene.h"
 #include "ehd_capsule/scene/units.h"

@@ -1,13 +1,17 @@
-// Throughput of the D2Q9 MRT stream-collide kernel (LatticeBoltzmann2D::Step) in MLUPS (million
+// Throughput of the MRT stream-collide kernels (LatticeBoltzmann<L>::Step) in MLUPS (million
 // lattice-node updates per second), with a STREAM-like triad for the machine's memory bandwidth.
 //
-// Memory traffic per node update (double): 9 population reads + 9 writes (144 B) + write-allocate
-// of the 9 written lines (72 B) = 216 B for a bare D2Q9 kernel; this kernel also reads the force
-// (2 x 8 B) and writes rho, ux, uy (3 x 8 B + 3 x 8 B write-allocate): 280 B per update (+8 B with
-// a viscosity field). The bound is bandwidth / 280 B.
+// Memory traffic per node update (double), A/B streaming with write-allocate:
+//   D2Q9:  9 population reads + 9 writes (144 B) + write-allocate of the 9 written lines (72 B) =
+//          216 B for a bare kernel; this one also reads the force (2 x 8 B) and writes rho, ux, uy
+//          (3 x 8 B + 3 x 8 B write-allocate): 280 B per update (+8 B with a viscosity field).
+//   D3Q19: 19 reads + 19 writes + 19 write-allocate (456 B), force 3 x 8 B, rho and u 4 x 8 B
+//          + write-allocate 4 x 8 B: 544 B per update (+8 B with a viscosity field).
+// The bound is bandwidth / (B per update). Sizes are N^2 (D2Q9) or N^3 (D3Q19) nodes.
 //
-// usage: lbm_bench [--sizes 256,321,512,1024,1281] [--threads 1,2] [--seconds 0.5] [--repeats 3]
-//                  [--forcing split|guo] [--viscosity-field] [--stores auto|cached|streaming]
+// usage: lbm_bench [--lattice d2q9|d3q19] [--sizes 256,321,512,1024,1281] [--threads 1,2]
+//                  [--seconds 0.5] [--repeats 3] [--forcing split|guo] [--viscosity-field]
+//                  [--stores auto|cached|streaming]
 #include <omp.h>
 
 #include <algorithm>
@@ -19,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "ehd_capsule/lbm/lattice_boltzmann_2d.h"
+#include "ehd_capsule/lbm/lattice_boltzmann.h"
 
 namespace {
 
@@ -58,14 +62,61 @@ double TriadBandwidthGBs(int threads) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::vector<int> sizes = {256, 321, 512, 1024, 1281};
-  std::vector<int> thread_counts = {1, 2};
+struct BenchOptions {
   double seconds = 0.5;
   int repeats = 3;
   ehd::ForcingScheme forcing = ehd::ForcingScheme::kSplitMomentum;
   bool viscosity_field = false;
   ehd::PopulationStores stores = ehd::PopulationStores::kAuto;
+};
+
+// Best wall-clock MLUPS and CPU-time MLUPS of `lb` over o.repeats runs of about o.seconds.
+template <class Lattice>
+void Measure(Lattice& lb, int n, int threads, double bytes_per_update, const BenchOptions& o) {
+  lb.InitializeShear(1e-3 / n);
+  for (std::size_t k = 0; k < lb.force_x().size(); ++k) lb.force_x()[k] = 1e-8 * (k % 7);
+  if (o.viscosity_field) {
+    std::vector<double> nu(lb.nodes(), 0.1);
+    for (std::size_t k = 0; k < nu.size() / 3; ++k) nu[k] = 0.5;
+    lb.SetViscosityField(nu);
+  }
+  // Calibrate the step count to about `seconds`.
+  int steps = 2;
+  for (;;) {
+    const auto t0 = Clock::now();
+    for (int s = 0; s < steps; ++s) lb.Step();
+    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (dt > 0.2 * o.seconds) {
+      steps = std::max(steps, static_cast<int>(steps * o.seconds / dt));
+      break;
+    }
+    steps *= 2;
+  }
+  // Wall-clock MLUPS, and MLUPS from the process CPU time per thread: on a shared machine the
+  // latter does not count time the threads spent descheduled.
+  double best = 0, best_cpu = 0;
+  for (int rep = 0; rep < o.repeats; ++rep) {
+    const auto t0 = Clock::now();
+    const std::clock_t c0 = std::clock();
+    for (int s = 0; s < steps; ++s) lb.Step();
+    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC / threads;
+    const double updates = static_cast<double>(lb.nodes()) * steps;
+    best = std::max(best, updates / dt * 1e-6);
+    best_cpu = std::max(best_cpu, updates / cpu * 1e-6);
+  }
+  if (!lb.AllFinite()) std::printf("(non-finite state)\n");
+  std::printf("%8d %8d %8d %10.1f %10.1f %12.2f %12.1f\n", n, threads, steps, best,
+              best * bytes_per_update * 1e-3, 1e3 / best, best_cpu);
+  std::fflush(stdout);
+}
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes = {256, 321, 512, 1024, 1281};
+  bool sizes_given = false;
+  std::vector<int> thread_counts = {1, 2};
+  BenchOptions o;
+  bool d3q19 = false;
   try {
     for (int k = 1; k < argc; ++k) {
       const std::string arg = argv[k];
@@ -73,100 +124,78 @@ int main(int argc, char** argv) {
         if (k + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
         return argv[++k];
       };
-      if (arg == "--sizes") {
+      if (arg == "--lattice") {
+        const std::string v = value();
+        if (v != "d2q9" && v != "d3q19") throw std::invalid_argument("--lattice d2q9|d3q19");
+        d3q19 = v == "d3q19";
+      } else if (arg == "--sizes") {
         sizes = ParseList(value());
+        sizes_given = true;
       } else if (arg == "--threads") {
         thread_counts = ParseList(value());
       } else if (arg == "--seconds") {
-        seconds = std::stod(value());
+        o.seconds = std::stod(value());
       } else if (arg == "--repeats") {
-        repeats = std::stoi(value());
+        o.repeats = std::stoi(value());
       } else if (arg == "--forcing") {
         const std::string v = value();
         if (v != "split" && v != "guo") throw std::invalid_argument("--forcing split|guo");
-        forcing = v == "guo" ? ehd::ForcingScheme::kGuo : ehd::ForcingScheme::kSplitMomentum;
+        o.forcing = v == "guo" ? ehd::ForcingScheme::kGuo : ehd::ForcingScheme::kSplitMomentum;
       } else if (arg == "--stores") {
         const std::string v = value();
         if (v == "auto") {
-          stores = ehd::PopulationStores::kAuto;
+          o.stores = ehd::PopulationStores::kAuto;
         } else if (v == "cached") {
-          stores = ehd::PopulationStores::kCached;
+          o.stores = ehd::PopulationStores::kCached;
         } else if (v == "streaming") {
-          stores = ehd::PopulationStores::kStreaming;
+          o.stores = ehd::PopulationStores::kStreaming;
         } else {
           throw std::invalid_argument("--stores auto|cached|streaming");
         }
       } else if (arg == "--viscosity-field") {
-        viscosity_field = true;
+        o.viscosity_field = true;
       } else {
         throw std::invalid_argument("unknown option " + arg);
       }
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr,
-                 "lbm_bench: %s\nusage: lbm_bench [--sizes 256,321,...] [--threads 1,2] "
+                 "lbm_bench: %s\nusage: lbm_bench [--lattice d2q9|d3q19] [--sizes 256,321,...] "
+                 "[--threads 1,2] "
                  "[--seconds 0.5] [--repeats 3] [--forcing split|guo] [--viscosity-field] "
                  "[--stores auto|cached|streaming]\n",
                  e.what());
     return 2;
   }
-  const double bytes_per_update = viscosity_field ? 288.0 : 280.0;
-  std::printf("D2Q9 MRT stream-collide, shear walls, forcing %s%s, best of %d runs of >= %.2f s\n",
-              forcing == ehd::ForcingScheme::kGuo ? "guo" : "split",
-              viscosity_field ? ", viscosity field" : "", repeats, seconds);
+  if (d3q19 && !sizes_given) sizes = {64, 100, 128};
+  const double bytes_per_update = (d3q19 ? 544.0 : 280.0) + (o.viscosity_field ? 8.0 : 0.0);
+  std::printf("%s MRT stream-collide, shear walls, forcing %s%s, best of %d runs of >= %.2f s\n",
+              d3q19 ? "D3Q19" : "D2Q9", o.forcing == ehd::ForcingScheme::kGuo ? "guo" : "split",
+              o.viscosity_field ? ", viscosity field" : "", o.repeats, o.seconds);
   for (int t : thread_counts) {
     const double bw = TriadBandwidthGBs(t);
     std::printf("triad bandwidth, %d thread(s): %.1f GB/s -> bound %.0f MLUPS at %.0f B/update\n",
                 t, bw, bw * 1e3 / bytes_per_update, bytes_per_update);
   }
-  std::printf("%8s %8s %8s %10s %10s %12s\n", "N", "threads", "steps", "MLUPS", "GB/s",
-              "ns/update");
+  std::printf("%8s %8s %8s %10s %10s %12s %12s\n", "N", "threads", "steps", "MLUPS", "GB/s",
+              "ns/update", "cpu MLUPS");
   for (int n : sizes) {
     for (int t : thread_counts) {
       ehd::LbmParameters p;
       p.nx = p.ny = n;
+      p.nz = d3q19 ? n : 1;
       p.viscosity = 0.1;
       p.boundary = ehd::FluidBoundary::kShearWalls;
-      p.forcing = forcing;
+      p.forcing = o.forcing;
       p.threads = t;
-      p.stores = stores;
-      ehd::LatticeBoltzmann2D lb(p);
-      lb.InitializeShear(1e-3 / n);
-      for (std::size_t k = 0; k < lb.force_x().size(); ++k) lb.force_x()[k] = 1e-8 * (k % 7);
-      if (viscosity_field) {
-        std::vector<double> nu(lb.grid().size(), 0.1);
-        for (std::size_t k = 0; k < nu.size() / 3; ++k) nu[k] = 0.5;
-        lb.SetViscosityField(nu);
+      p.stores = o.stores;
+      if (d3q19) {
+        ehd::LatticeBoltzmann3D lb(p);
+        Measure(lb, n, t, bytes_per_update, o);
+      } else {
+        ehd::LatticeBoltzmann2D lb(p);
+        Measure(lb, n, t, bytes_per_update, o);
       }
-      // Calibrate the step count to about `seconds`.
-      int steps = 2;
-      for (;;) {
-        const auto t0 = Clock::now();
-        for (int s = 0; s < steps; ++s) lb.Step();
-        const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
-        if (dt > 0.2 * seconds) {
-          steps = std::max(steps, static_cast<int>(steps * seconds / dt));
-          break;
-        }
-        steps *= 2;
-      }
-      // Wall-clock MLUPS, and MLUPS from the process CPU time per thread: on a shared machine
-      // the latter does not count time the threads spent descheduled.
-      double best = 0, best_cpu = 0;
-      for (int rep = 0; rep < repeats; ++rep) {
-        const auto t0 = Clock::now();
-        const std::clock_t c0 = std::clock();
-        for (int s = 0; s < steps; ++s) lb.Step();
-        const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
-        const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC / t;
-        const double updates = static_cast<double>(n) * n * steps;
-        best = std::max(best, updates / dt * 1e-6);
-        best_cpu = std::max(best_cpu, updates / cpu * 1e-6);
-      }
-      if (!lb.AllFinite()) std::printf("(non-finite state)\n");
-      std::printf("%8d %8d %8d %10.1f %10.1f %12.2f %12.1f\n", n, t, steps, best,
-                  best * bytes_per_update * 1e-3, 1e3 / best, best_cpu);
-      std::fflush(stdout);
     }
   }
   return 0;

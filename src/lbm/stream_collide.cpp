@@ -1,4 +1,4 @@
-// Fused pull stream + MRT collide for LatticeBoltzmann2D (song2019 eq. (97), forcing eqs.
+// Fused pull stream + MRT collide for the D2Q9 lattice (song2019 eq. (97), forcing eqs.
 // (107)-(108)) with the boundary links of the half-way bounce-back walls.
 //
 //   f_i(x, t) = f*_i(x - c_i, t - 1)                       interior and periodic links
@@ -11,6 +11,8 @@
 // rows/columns that touch a wall or wrap in x take the general path; the rest of each row goes
 // through a loop whose nine source streams are row pointers shifted by -c_x, which the compiler
 // vectorises (`#pragma omp simd`, restrict pointers; check with -fopt-info-vec).
+#include "stream_collide.h"
+
 #include <immintrin.h>
 #include <omp.h>
 
@@ -19,7 +21,6 @@
 #include <cstdint>
 
 #include "ehd_capsule/lbm/d2q9.h"
-#include "ehd_capsule/lbm/lattice_boltzmann_2d.h"
 
 namespace ehd {
 namespace {
@@ -192,51 +193,51 @@ void StreamCollideRows(const KernelArgs& a, int threads) {
 
 }  // namespace
 
-void LatticeBoltzmann2D::StreamCollide() {
+namespace lbm_kernels {
+
+const std::size_t kD2Q9ScratchDoublesPerThread =
+    static_cast<std::size_t>(kScratchStreams) * kStreamChunk;
+
+void StreamCollideD2Q9(const StreamCollideArgs& g) {
   KernelArgs a;
-  a.src = current().data();
-  a.dst = next().data();
-  a.nx = params_.nx;
-  a.ny = params_.ny;
-  a.n = n_;
-  a.fx = force_x_.data();
-  a.fy = force_y_.data();
-  a.s_nu_field = variable_viscosity_ ? s_nu_field_.data() : nullptr;
-  a.s_nu_uniform = d2q9::ShearRateFromViscosity(params_.viscosity);
-  a.rates = MrtRates{params_.s_e, params_.s_epsilon, params_.s_q};
-  a.periodic_y = params_.boundary == FluidBoundary::kPeriodic;
-  a.side_walls = params_.boundary == FluidBoundary::kClosedBox;
-  a.wall_u_bottom = params_.wall_velocity_bottom;
-  a.wall_u_top = params_.wall_velocity_top;
-  a.rho = rho_.data();
-  a.ux = ux_.data();
-  a.uy = uy_.data();
-  // Small grids run on one thread: on a shared, oversubscribed machine the fork/join of a
-  // parallel region costs more than the work below ~128^2 nodes.
-  constexpr std::size_t kMinNodesPerThread = 8192;
-  int threads = params_.threads > 0 ? params_.threads : omp_get_max_threads();
-  threads = std::max(1, std::min<int>(threads, static_cast<int>(n_ / kMinNodesPerThread)));
-  // Streaming stores are opt-in: on the 2-core development machine (shared, loaded) they did not
-  // measurably beat cached stores even at 1281^2 (docs/lbm.md), so kAuto keeps cached stores.
-  const bool streaming = params_.stores == PopulationStores::kStreaming;
-  a.scratch = nullptr;
-  if (streaming) {
-    const std::size_t per_thread = static_cast<std::size_t>(kScratchStreams) * kStreamChunk;
-    const std::size_t needed = per_thread * static_cast<std::size_t>(threads) + 8;
-    if (stream_scratch_.size() < needed) stream_scratch_.assign(needed, 0.0);  // first step only
-    const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(stream_scratch_.data());
-    a.scratch = stream_scratch_.data() + ((64 - base % 64) % 64) / sizeof(double);
-  }
-  const bool guo = params_.forcing == ForcingScheme::kGuo;
-  if (guo && variable_viscosity_) {
-    StreamCollideRows<ForcingScheme::kGuo, true>(a, threads);
+  a.src = g.src;
+  a.dst = g.dst;
+  a.nx = g.nx;
+  a.ny = g.ny;
+  a.n = g.n;
+  a.fx = g.force[0];
+  a.fy = g.force[1];
+  a.s_nu_field = g.s_nu_field;
+  a.s_nu_uniform = g.s_nu_uniform;
+  a.rates = g.rates;
+  a.periodic_y = g.periodic_y;
+  a.side_walls = g.side_walls;
+  a.wall_u_bottom = g.wall_u_bottom;
+  a.wall_u_top = g.wall_u_top;
+  a.rho = g.rho;
+  a.ux = g.u[0];
+  a.uy = g.u[1];
+  a.scratch = g.scratch;
+  const bool guo = g.forcing == ForcingScheme::kGuo;
+  const bool variable = g.s_nu_field != nullptr;
+  if (guo && variable) {
+    StreamCollideRows<ForcingScheme::kGuo, true>(a, g.threads);
   } else if (guo) {
-    StreamCollideRows<ForcingScheme::kGuo, false>(a, threads);
-  } else if (variable_viscosity_) {
-    StreamCollideRows<ForcingScheme::kSplitMomentum, true>(a, threads);
+    StreamCollideRows<ForcingScheme::kGuo, false>(a, g.threads);
+  } else if (variable) {
+    StreamCollideRows<ForcingScheme::kSplitMomentum, true>(a, g.threads);
   } else {
-    StreamCollideRows<ForcingScheme::kSplitMomentum, false>(a, threads);
+    StreamCollideRows<ForcingScheme::kSplitMomentum, false>(a, g.threads);
   }
 }
 
+void CollideNodeD2Q9(double* p, const double* force, double s_nu, const MrtRates& rates,
+                     ForcingScheme forcing, double& rho, double* u) {
+  auto kernel = forcing == ForcingScheme::kGuo ? &MrtCollideNode<ForcingScheme::kGuo>
+                                               : &MrtCollideNode<ForcingScheme::kSplitMomentum>;
+  kernel(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], force[0], force[1], s_nu, rates, rho,
+         u[0], u[1]);
+}
+
+}  // namespace lbm_kernels
 }  // namespace ehd

@@ -1,7 +1,5 @@
 // Flow validation of LatticeBoltzmann2D (song2019 section 3.1.1, forcing eqs. (107)-(108)) against
 // exact Navier-Stokes solutions, plus the class's contract (validation, restart, threads).
-#include "ehd_capsule/lbm/lattice_boltzmann_2d.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +8,7 @@
 #include <string>
 
 #include "ehd_capsule/lbm/d2q9.h"
+#include "ehd_capsule/lbm/lattice_boltzmann.h"
 
 namespace ehd {
 namespace {
@@ -142,7 +141,7 @@ double PoiseuilleMaxError(ForcingScheme forcing, double nu, double s_q, double* 
       ux[g.index(i, j)] = force / (2 * nu) * (half * half - g.y(j) * g.y(j));
     }
   }
-  lb.InitializeVelocity(ux, uy);
+  lb.InitializeVelocity({ux, uy});
   for (double& v : lb.force_x()) v = force;
   const int steps = static_cast<int>(40 * 4 * half * half / (kPi * kPi * nu));  // 40 e-folds
   for (int s = 0; s < steps; ++s) lb.Step();

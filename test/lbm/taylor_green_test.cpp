@@ -13,7 +13,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "ehd_capsule/lbm/lattice_boltzmann_2d.h"
+#include "ehd_capsule/lbm/lattice_boltzmann.h"
 
 namespace ehd {
 namespace {
@@ -47,7 +47,7 @@ TaylorGreenResult RunTaylorGreen(int n, double nu, double u0, ForcingScheme forc
       rho[id] = 1.0 - 3.0 * (u0 * u0 / 4) * (std::cos(2 * k * x) + std::cos(2 * k * y));
     }
   }
-  lb.InitializeState(rho, ux, uy);
+  lb.InitializeState(rho, {ux, uy});
   // Amplitude = projection of u on the mode shape.
   auto amplitude = [&]() {
     double num = 0, den = 0;

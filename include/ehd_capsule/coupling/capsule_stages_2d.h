@@ -27,7 +27,7 @@
 #include "ehd_capsule/ib/marker_update.h"
 #include "ehd_capsule/ib/sawtooth_filter.h"
 #include "ehd_capsule/ib/viscosity_indicator.h"
-#include "ehd_capsule/lbm/lattice_boltzmann_2d.h"
+#include "ehd_capsule/lbm/lattice_boltzmann.h"
 #include "ehd_capsule/membrane/membrane_model.h"
 #include "ehd_capsule/scene/scene.h"
 #include "ehd_capsule/scene/units.h"

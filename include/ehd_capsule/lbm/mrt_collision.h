@@ -33,9 +33,11 @@ enum class ForcingScheme {
 
 // Relaxation rates that are the same at every node (the shear rate s_nu may vary per node).
 struct MrtRates {
-  double s_e;        // e (bulk viscosity), reference's s_1
-  double s_epsilon;  // epsilon, reference's s_2
-  double s_q;        // q_x, q_y, reference's s_4 = s_6
+  double s_e;         // e (bulk viscosity), reference's s_1
+  double s_epsilon;   // epsilon, reference's s_2
+  double s_q;         // q_x, q_y (, q_z), reference's s_4 = s_6 (= s_8 in 3D)
+  double s_pi = 1.8;  // D3Q19 only: 3pi_xx, pi_ww (reference's s_10, s_12)
+  double s_m = 1.8;   // D3Q19 only: m_x, m_y, m_z (reference's s_16..s_18)
 };
 
 // Collides the nine populations f0..f8 of one node in place. (fx, fy) is the body-force density,

@@ -1,0 +1,265 @@
+// Fused pull stream + MRT collide for the D3Q19 lattice (song2019 sec. 3.1.2, eqs. (97),
+// (100)-(101), forcing eqs. (107)-(108)) with the half-way bounce-back walls.
+//
+// Collision in moment space with the moment matrix of lattice_descriptors.h. The forward
+// (m = M f) and backward (f += M^-1 dm) transforms are unrolled at compile time over the non-zero
+// entries of M only (fold expressions over the index pack; a zero coefficient generates no
+// instruction), so the kernel does what a hand-written one does without 361-entry loops.
+// Equilibria (d'Humieres et al. 2002 with the LBGK-consistent coefficients; they are the moments
+// of the incompressible polynomial equilibrium, tested against generic_mrt_collision.h):
+//   e^eq = -11 rho + 19 |j'|^2,  eps^eq = 3 rho - 11/2 |j'|^2,  q^eq = -2/3 j',
+//   3p_xx^eq = 3 j'_x^2 - |j'|^2,  p_ww^eq = j'_y^2 - j'_z^2,  p_xy^eq = j'_x j'_y, ...,
+//   3pi_xx^eq = -3p_xx^eq / 2,  pi_ww^eq = -p_ww^eq / 2,  m^eq = 0,
+// with j' = j + F/2 (eq. (107)) and j* = j + F (eq. (108)).
+//
+// Streaming: structure of arrays f[q * n + node], node = (k ny + j) nx + i, two buffers; rows
+// (j, k) away from the y walls (and z walls in a closed box) stream their interior i = 1..nx-2
+// from 19 row pointers shifted by -c_x (z wraps by row, periodic); the first and last node of a
+// row and the wall rows gather node by node with wrap and bounce-back. OpenMP over rows.
+#include <omp.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+
+#include "ehd_capsule/lbm/generic_mrt_collision.h"
+#include "ehd_capsule/lbm/lattice_descriptors.h"
+#include "stream_collide.h"
+
+namespace ehd {
+namespace {
+
+using L = D3Q19;
+constexpr int kQ = L::kQ;
+using Indices = std::make_index_sequence<kQ>;
+constexpr int kChunk = 32;  // nodes per interior block
+
+// m_K = sum_i M[K][i] f_i over the non-zero M[K][i].
+template <int K, std::size_t... I>
+__attribute__((always_inline)) inline double Moment(const double* f, std::index_sequence<I...>) {
+  double v = 0.0;
+  (
+      [&]() __attribute__((always_inline)) {
+        constexpr double c = L::kMomentMatrix[K][I];
+        if constexpr (c == 1.0) {
+          v += f[I];
+        } else if constexpr (c == -1.0) {
+          v -= f[I];
+        } else if constexpr (c != 0.0) {
+          v += c * f[I];
+        }
+      }(),
+      ...);
+  return v;
+}
+
+// f_I += sum_k M[k][I] / |M_k|^2 dm_k over the non-zero M[k][I] (dm indexed by moment).
+template <int I, std::size_t... K>
+__attribute__((always_inline)) inline double Back(const double* dm, std::index_sequence<K...>) {
+  double v = 0.0;
+  (
+      [&]() __attribute__((always_inline)) {
+        constexpr double c = L::kMomentMatrix[K][I];
+        if constexpr (c != 0.0 && K != 0) v += (c / L::kMomentNorm[K]) * dm[K];  // dm_rho = 0
+      }(),
+      ...);
+  return v;
+}
+
+template <std::size_t... K>
+__attribute__((always_inline)) inline void AllMoments(const double* f, double* m,
+                                                      std::index_sequence<K...>) {
+  ((m[K] = Moment<static_cast<int>(K)>(f, Indices{})), ...);
+}
+
+template <std::size_t... I>
+__attribute__((always_inline)) inline void AddBack(double* f, const double* dm,
+                                                   std::index_sequence<I...>) {
+  ((f[I] += Back<static_cast<int>(I)>(dm, Indices{})), ...);
+}
+
+template <ForcingScheme kForcing>
+__attribute__((always_inline)) inline void CollideD3Q19(double* f, double fx, double fy, double fz,
+                                                        double s_nu, const MrtRates& r,
+                                                        double& rho_out, double& ux_out,
+                                                        double& uy_out, double& uz_out) {
+  double m[kQ];
+  AllMoments(f, m, Indices{});
+  const double rho = m[0];
+  const double ux = m[3] + 0.5 * fx, uy = m[5] + 0.5 * fy, uz = m[7] + 0.5 * fz;
+  const double ux2 = ux * ux, uy2 = uy * uy, uz2 = uz * uz;
+  const double u2 = ux2 + uy2 + uz2;
+  const double pxx_eq = 3.0 * ux2 - u2, pww_eq = uy2 - uz2;
+  double dm[kQ];
+  dm[0] = 0.0;
+  dm[1] = -r.s_e * (m[1] - (-11.0 * rho + 19.0 * u2));
+  dm[2] = -r.s_epsilon * (m[2] - (3.0 * rho - 5.5 * u2));
+  dm[3] = fx;
+  dm[4] = -r.s_q * (m[4] + (2.0 / 3.0) * ux);
+  dm[5] = fy;
+  dm[6] = -r.s_q * (m[6] + (2.0 / 3.0) * uy);
+  dm[7] = fz;
+  dm[8] = -r.s_q * (m[8] + (2.0 / 3.0) * uz);
+  dm[9] = -s_nu * (m[9] - pxx_eq);
+  dm[10] = -r.s_pi * (m[10] + 0.5 * pxx_eq);
+  dm[11] = -s_nu * (m[11] - pww_eq);
+  dm[12] = -r.s_pi * (m[12] + 0.5 * pww_eq);
+  dm[13] = -s_nu * (m[13] - ux * uy);
+  dm[14] = -s_nu * (m[14] - uy * uz);
+  dm[15] = -s_nu * (m[15] - ux * uz);
+  dm[16] = -r.s_m * m[16];
+  dm[17] = -r.s_m * m[17];
+  dm[18] = -r.s_m * m[18];
+  if constexpr (kForcing == ForcingScheme::kGuo) {
+    // (1 - s_k/2) S_k with S = M F_i, F_i = w_i [3 c.F + 9 (c.u)(c.F) - 3 u.F].
+    double source[kQ], s[kQ];
+    const double uf = ux * fx + uy * fy + uz * fz;
+    for (int i = 0; i < kQ; ++i) {
+      const double cu = L::kC[i][0] * ux + L::kC[i][1] * uy + L::kC[i][2] * uz;
+      const double cf = L::kC[i][0] * fx + L::kC[i][1] * fy + L::kC[i][2] * fz;
+      source[i] = L::kWeight[i] * (3.0 * cf + 9.0 * cu * cf - 3.0 * uf);
+    }
+    AllMoments(source, s, Indices{});
+    for (int k = 0; k < kQ; ++k) {
+      if (L::kRateGroup[k] == RateGroup::kConserved) continue;
+      dm[k] += (1.0 - 0.5 * MrtRate(L::kRateGroup[k], s_nu, r)) * s[k];
+    }
+  }
+  AddBack(f, dm, Indices{});
+  rho_out = rho;
+  ux_out = ux;
+  uy_out = uy;
+  uz_out = uz;
+}
+
+template <ForcingScheme kForcing, bool kVariableViscosity>
+void StreamCollideRows(const lbm_kernels::StreamCollideArgs& a) {
+  const int nx = a.nx, ny = a.ny, nz = a.nz;
+  const std::size_t n = a.n;
+  const std::size_t plane = static_cast<std::size_t>(nx) * ny;
+  auto wrap = [](int v, int period) { return (v % period + period) % period; };
+  // General node: gather with wrap and bounce-back, then collide.
+  auto boundary_node = [&](int i, int j, int k) {
+    const std::size_t node =
+        static_cast<std::size_t>(k) * plane + static_cast<std::size_t>(j) * nx + i;
+    double f[kQ];
+    for (int q = 0; q < kQ; ++q) {
+      int si = i - L::kC[q][0], sj = j - L::kC[q][1], sk = k - L::kC[q][2];
+      if (sj < 0 || sj >= ny) {
+        if (a.periodic_y) {
+          sj = wrap(sj, ny);
+        } else {
+          const double wall_u = sj < 0 ? a.wall_u_bottom : a.wall_u_top;
+          f[q] = a.src[L::kOpposite[q] * n + node] + 6.0 * L::kWeight[q] * L::kC[q][0] * wall_u;
+          continue;
+        }
+      }
+      if (si < 0 || si >= nx || sk < 0 || sk >= nz) {
+        if (a.side_walls) {
+          f[q] = a.src[L::kOpposite[q] * n + node];  // resting wall
+          continue;
+        }
+        si = wrap(si, nx);
+        sk = wrap(sk, nz);
+      }
+      f[q] = a.src[q * n + static_cast<std::size_t>(sk) * plane +
+                   static_cast<std::size_t>(sj) * nx + si];
+    }
+    const double s_nu = kVariableViscosity ? a.s_nu_field[node] : a.s_nu_uniform;
+    double r, ux, uy, uz;
+    CollideD3Q19<kForcing>(f, a.force[0][node], a.force[1][node], a.force[2][node], s_nu, a.rates,
+                           r, ux, uy, uz);
+    for (int q = 0; q < kQ; ++q) a.dst[q * n + node] = f[q];
+    a.rho[node] = r;
+    a.u[0][node] = ux;
+    a.u[1][node] = uy;
+    a.u[2][node] = uz;
+  };
+  const long rows = static_cast<long>(ny) * nz;
+#pragma omp parallel for schedule(static) num_threads(a.threads) if (a.threads != 1)
+  for (long row_index = 0; row_index < rows; ++row_index) {
+    const int j = static_cast<int>(row_index % ny), k = static_cast<int>(row_index / ny);
+    const bool wall_row =
+        (!a.periodic_y && (j == 0 || j == ny - 1)) || (a.side_walls && (k == 0 || k == nz - 1));
+    if (wall_row || nx < 3) {
+      for (int i = 0; i < nx; ++i) boundary_node(i, j, k);
+      continue;
+    }
+    boundary_node(0, j, k);
+    const std::size_t row = static_cast<std::size_t>(k) * plane + static_cast<std::size_t>(j) * nx;
+    const double* __restrict s[kQ];
+    for (int q = 0; q < kQ; ++q) {
+      const int sj = wrap(j - L::kC[q][1], ny), sk = wrap(k - L::kC[q][2], nz);
+      s[q] = a.src + q * n + static_cast<std::size_t>(sk) * plane +
+             static_cast<std::size_t>(sj) * nx - L::kC[q][0];
+    }
+    // The interior in chunks: the 19 source streams are copied into an L1-resident block, the
+    // collision runs over the block (one SIMD loop over nodes, every access at a constant offset)
+    // and the block is copied to the destination rows.
+    alignas(64) double block[kQ][kChunk];
+    alignas(64) double out_rho[kChunk], out_u[3][kChunk];
+    for (int i0 = 1; i0 < nx - 1; i0 += kChunk) {
+      const int len = std::min(kChunk, nx - 1 - i0);
+      for (int q = 0; q < kQ; ++q) {
+        const double* __restrict src = s[q] + i0;
+        for (int i = 0; i < len; ++i) block[q][i] = src[i];
+      }
+      const std::size_t c = row + i0;
+      const double* __restrict fx = a.force[0] + c;
+      const double* __restrict fy = a.force[1] + c;
+      const double* __restrict fz = a.force[2] + c;
+      const double* __restrict nu = kVariableViscosity ? a.s_nu_field + c : nullptr;
+      for (int i = 0; i < len; ++i) {
+        double f[kQ];
+#pragma GCC unroll 19
+        for (int q = 0; q < kQ; ++q) f[q] = block[q][i];
+        const double s_nu = kVariableViscosity ? nu[i] : a.s_nu_uniform;
+        CollideD3Q19<kForcing>(f, fx[i], fy[i], fz[i], s_nu, a.rates, out_rho[i], out_u[0][i],
+                               out_u[1][i], out_u[2][i]);
+#pragma GCC unroll 19
+        for (int q = 0; q < kQ; ++q) block[q][i] = f[q];
+      }
+      for (int q = 0; q < kQ; ++q) {
+        double* __restrict dst = a.dst + q * n + c;
+        for (int i = 0; i < len; ++i) dst[i] = block[q][i];
+      }
+      for (int i = 0; i < len; ++i) a.rho[c + i] = out_rho[i];
+      for (int d = 0; d < 3; ++d) {
+        for (int i = 0; i < len; ++i) a.u[d][c + i] = out_u[d][i];
+      }
+    }
+    boundary_node(nx - 1, j, k);
+  }
+}
+
+}  // namespace
+
+namespace lbm_kernels {
+
+void StreamCollideD3Q19(const StreamCollideArgs& a) {
+  const bool guo = a.forcing == ForcingScheme::kGuo;
+  const bool variable = a.s_nu_field != nullptr;
+  if (guo && variable) {
+    StreamCollideRows<ForcingScheme::kGuo, true>(a);
+  } else if (guo) {
+    StreamCollideRows<ForcingScheme::kGuo, false>(a);
+  } else if (variable) {
+    StreamCollideRows<ForcingScheme::kSplitMomentum, true>(a);
+  } else {
+    StreamCollideRows<ForcingScheme::kSplitMomentum, false>(a);
+  }
+}
+
+void CollideNodeD3Q19(double* f, const double* force, double s_nu, const MrtRates& rates,
+                      ForcingScheme forcing, double& rho, double* u) {
+  if (forcing == ForcingScheme::kGuo) {
+    CollideD3Q19<ForcingScheme::kGuo>(f, force[0], force[1], force[2], s_nu, rates, rho, u[0], u[1],
+                                      u[2]);
+  } else {
+    CollideD3Q19<ForcingScheme::kSplitMomentum>(f, force[0], force[1], force[2], s_nu, rates, rho,
+                                                u[0], u[1], u[2]);
+  }
+}
+
+}  // namespace lbm_kernels
+}  // namespace ehd
