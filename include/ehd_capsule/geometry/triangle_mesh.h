@@ -1,0 +1,117 @@
+// Closed triangulated surfaces for the 3D membranes and the 3D electric solver: the mesh, the
+// shapes the scenes start from, and the discrete differential geometry on it.
+//
+// TriangleMesh: vertices (3 x V, lattice or physical units) and triangles (three vertex indices,
+// counter-clockwise seen from outside, so face normals (b - a) x (c - a) point outwards), with
+// the topology built once (HemoCell's CommonCellConstants idea): the edges, the triangles around
+// each vertex and, per edge, its two triangles and opposite vertices. Vertex positions may then
+// change freely (the membrane moves); the topology does not.
+//
+// Shapes: the icosphere (icosahedron subdivided k times, each edge split at its midpoint,
+// projected on the sphere: V = 10 4^k + 2, F = 20 4^k: 12, 42, 162, 642, 2562, 10242 vertices for
+// k = 0..5; song2019 ch. 6 uses k = 4), the ellipsoid (the icosphere scaled along the axes, so
+// every vertex lies on the exact surface), and the biconcave red-cell surface of revolution of
+// song2019 eq. (152) (Evans & Fung's profile): a sphere point at polar angle chi from the
+// symmetry axis maps to distance a alpha sin(chi) from the axis and height
+// (a alpha / 2)(c0 + c1 sin^2 chi + c2 sin^4 chi) cos(chi) along it. The symmetry axis is y, so
+// the cross-section in the shear plane z = 0 is the 2D profile of BiconcaveMarkers.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "ehd_capsule/geometry/initial_shapes.h"
+
+namespace ehd {
+
+class TriangleMesh {
+ public:
+  using Triangle = std::array<int, 3>;
+
+  TriangleMesh() = default;
+  // Builds the topology; throws std::invalid_argument unless the surface is a closed, consistently
+  // oriented 2-manifold (every edge in exactly two triangles, traversed once each way) with
+  // vertex indices in range and no isolated vertex.
+  TriangleMesh(Eigen::Matrix3Xd vertices, std::vector<Triangle> triangles);
+
+  int vertex_count() const { return static_cast<int>(vertices_.cols()); }
+  int triangle_count() const { return static_cast<int>(triangles_.size()); }
+  int edge_count() const { return static_cast<int>(edges_.size()); }
+
+  const Eigen::Matrix3Xd& vertices() const { return vertices_; }
+  // Moves the vertices (same count); the topology stays.
+  void SetVertices(const Eigen::Matrix3Xd& vertices);
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+
+  struct Edge {
+    int a, b;                           // a < b
+    int left, right;                    // triangles on either side (left: the one with a -> b)
+    int opposite_left, opposite_right;  // their vertices opposite the edge
+  };
+  const std::vector<Edge>& edges() const { return edges_; }
+  // Triangles that contain vertex v.
+  const std::vector<int>& vertex_triangles(int v) const { return vertex_triangles_[v]; }
+  // Edges that contain vertex v.
+  const std::vector<int>& vertex_edges(int v) const { return vertex_edges_[v]; }
+
+  // Euler characteristic V - E + F (2 for a sphere).
+  int EulerCharacteristic() const { return vertex_count() - edge_count() + triangle_count(); }
+
+ private:
+  Eigen::Matrix3Xd vertices_;
+  std::vector<Triangle> triangles_;
+  std::vector<Edge> edges_;
+  std::vector<std::vector<int>> vertex_triangles_, vertex_edges_;
+};
+
+// Shapes (centred at the origin).
+TriangleMesh IcosphereMesh(int subdivisions, double radius = 1.0);
+TriangleMesh EllipsoidMesh(int subdivisions, double a, double b, double c);
+TriangleMesh BiconcaveMesh(int subdivisions, const BiconcaveParameters& p = {});
+// Exact enclosed volume of the biconcave surface: 2 pi R^3 (c0/3 + 2 c1/15 + 8 c2/105),
+// R = a alpha (from V = 2 int_0^R 2 pi r z(r) dr).
+double BiconcaveVolume(const BiconcaveParameters& p = {});
+
+// Geometry of the current vertex positions.
+double SurfaceArea(const TriangleMesh& mesh);
+double EnclosedVolume(const TriangleMesh& mesh);     // (1/6) sum x_a . (x_b x x_c)
+Eigen::Vector3d Centroid(const TriangleMesh& mesh);  // of the enclosed volume
+
+// Discrete differential geometry (Meyer, Desbrun, Schroeder & Barr, "Discrete differential-
+// geometry operators for triangulated 2-manifolds", 2003):
+//   mixed Voronoi area A_i of each vertex (Voronoi region, or the triangle's half/quarter for
+//   obtuse triangles), sum A_i = surface area;
+//   the cotangent Laplace-Beltrami operator
+//     (Delta f)_i = 1/(2 A_i) sum_j (cot alpha_ij + cot beta_ij)(f_j - f_i);
+//   the mean curvature normal Delta x = -2 H n (H = 1/R on a sphere, n outward), so
+//     H_i = -(Delta x)_i . n_i / 2;
+//   the Gaussian curvature by the angle deficit K_i = (2 pi - sum theta) / A_i (sum K_i A_i =
+//   2 pi chi exactly: Gauss-Bonnet);
+//   vertex normals: the area-weighted average of the face normals.
+struct SurfaceGeometry {
+  std::vector<double> vertex_area;         // A_i
+  Eigen::Matrix3Xd normal;                 // unit outward vertex normals
+  Eigen::Matrix3Xd laplace_position;       // (Delta x)_i
+  std::vector<double> mean_curvature;      // H_i
+  std::vector<double> gaussian_curvature;  // K_i
+};
+SurfaceGeometry MeasureSurface(const TriangleMesh& mesh);
+// (Delta f)_i for a scalar f per vertex, with the areas of MeasureSurface.
+std::vector<double> LaplaceBeltrami(const TriangleMesh& mesh, const std::vector<double>& area,
+                                    const std::vector<double>& f);
+
+// Mesh quality: edge lengths, triangle angles, the largest aspect ratio circumradius /
+// (2 inradius) (1 for an equilateral triangle) and the vertex valences.
+struct MeshQuality {
+  double min_edge = 0, max_edge = 0, mean_edge = 0;
+  double min_angle_deg = 0, max_angle_deg = 0;
+  double max_aspect_ratio = 0;
+  int min_valence = 0, max_valence = 0;
+  std::string Describe() const;
+};
+MeshQuality MeasureQuality(const TriangleMesh& mesh);
+
+}  // namespace ehd

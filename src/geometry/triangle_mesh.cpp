@@ -1,0 +1,319 @@
+// Closed triangle meshes, their shapes and discrete differential geometry; see triangle_mesh.h.
+#include "ehd_capsule/geometry/triangle_mesh.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace ehd {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Eigen::Vector3d Column(const Eigen::Matrix3Xd& x, int k) { return x.col(k); }
+
+double Cotangent(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  return u.dot(v) / u.cross(v).norm();
+}
+
+}  // namespace
+
+TriangleMesh::TriangleMesh(Eigen::Matrix3Xd vertices, std::vector<Triangle> triangles)
+    : vertices_(std::move(vertices)), triangles_(std::move(triangles)) {
+  const int v = vertex_count();
+  if (v < 4 || triangles_.size() < 4) {
+    throw std::invalid_argument(
+        "TriangleMesh: a closed surface needs >= 4 vertices and >= 4 "
+        "triangles (got " +
+        std::to_string(v) + ", " + std::to_string(triangles_.size()) + ")");
+  }
+  vertex_triangles_.assign(v, {});
+  vertex_edges_.assign(v, {});
+  // Directed edge a -> b to (triangle, opposite vertex); each must appear once.
+  std::map<std::pair<int, int>, std::pair<int, int>> directed;
+  for (int t = 0; t < triangle_count(); ++t) {
+    const Triangle& tri = triangles_[t];
+    for (int c = 0; c < 3; ++c) {
+      if (tri[c] < 0 || tri[c] >= v) {
+        throw std::invalid_argument("TriangleMesh: triangle " + std::to_string(t) +
+                                    " has vertex index " + std::to_string(tri[c]) +
+                                    " outside [0, " + std::to_string(v) + ")");
+      }
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+      throw std::invalid_argument("TriangleMesh: triangle " + std::to_string(t) +
+                                  " repeats a vertex");
+    }
+    for (int c = 0; c < 3; ++c) {
+      vertex_triangles_[tri[c]].push_back(t);
+      const auto key = std::make_pair(tri[c], tri[(c + 1) % 3]);
+      if (!directed.emplace(key, std::make_pair(t, tri[(c + 2) % 3])).second) {
+        throw std::invalid_argument("TriangleMesh: edge " + std::to_string(key.first) + " -> " +
+                                    std::to_string(key.second) +
+                                    " appears twice in the same direction (inconsistent "
+                                    "orientation or a non-manifold edge)");
+      }
+    }
+  }
+  for (const auto& [key, value] : directed) {
+    const auto [a, b] = key;
+    if (a > b) continue;
+    const auto other = directed.find(std::make_pair(b, a));
+    if (other == directed.end()) {
+      throw std::invalid_argument("TriangleMesh: edge " + std::to_string(a) + " - " +
+                                  std::to_string(b) +
+                                  " has one triangle only (the surface is not closed)");
+    }
+    Edge e{a, b, value.first, other->second.first, value.second, other->second.second};
+    vertex_edges_[a].push_back(static_cast<int>(edges_.size()));
+    vertex_edges_[b].push_back(static_cast<int>(edges_.size()));
+    edges_.push_back(e);
+  }
+  for (int k = 0; k < v; ++k) {
+    if (vertex_triangles_[k].empty()) {
+      throw std::invalid_argument("TriangleMesh: vertex " + std::to_string(k) +
+                                  " is in no triangle");
+    }
+  }
+}
+
+void TriangleMesh::SetVertices(const Eigen::Matrix3Xd& vertices) {
+  if (vertices.cols() != vertices_.cols()) {
+    throw std::invalid_argument("TriangleMesh::SetVertices: " + std::to_string(vertices.cols()) +
+                                " positions for " + std::to_string(vertices_.cols()) + " vertices");
+  }
+  vertices_ = vertices;
+}
+
+TriangleMesh IcosphereMesh(int subdivisions, double radius) {
+  if (subdivisions < 0 || subdivisions > 7) {
+    throw std::invalid_argument("IcosphereMesh: subdivisions = " + std::to_string(subdivisions) +
+                                " outside [0, 7]");
+  }
+  if (!(radius > 0.0)) throw std::invalid_argument("IcosphereMesh: radius must be > 0");
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Eigen::Vector3d> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                                    {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                                    {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for (auto& q : p) q.normalize();
+  std::vector<TriangleMesh::Triangle> f = {
+      {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+      {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (auto& tri : f) {  // outward orientation (the icosahedron is star-shaped about 0)
+    const Eigen::Vector3d n = (p[tri[1]] - p[tri[0]]).cross(p[tri[2]] - p[tri[0]]);
+    if (n.dot(p[tri[0]]) < 0) std::swap(tri[1], tri[2]);
+  }
+  for (int level = 0; level < subdivisions; ++level) {
+    std::map<std::pair<int, int>, int> midpoint;
+    auto middle = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      const auto found = midpoint.find(key);
+      if (found != midpoint.end()) return found->second;
+      p.push_back((p[a] + p[b]).normalized());
+      const int index = static_cast<int>(p.size()) - 1;
+      midpoint.emplace(key, index);
+      return index;
+    };
+    std::vector<TriangleMesh::Triangle> next;
+    next.reserve(4 * f.size());
+    for (const auto& tri : f) {
+      const int ab = middle(tri[0], tri[1]), bc = middle(tri[1], tri[2]),
+                ca = middle(tri[2], tri[0]);
+      next.push_back({tri[0], ab, ca});
+      next.push_back({tri[1], bc, ab});
+      next.push_back({tri[2], ca, bc});
+      next.push_back({ab, bc, ca});
+    }
+    f = std::move(next);
+  }
+  Eigen::Matrix3Xd x(3, static_cast<Eigen::Index>(p.size()));
+  for (std::size_t k = 0; k < p.size(); ++k) x.col(static_cast<Eigen::Index>(k)) = radius * p[k];
+  return TriangleMesh(std::move(x), std::move(f));
+}
+
+TriangleMesh EllipsoidMesh(int subdivisions, double a, double b, double c) {
+  if (!(a > 0.0 && b > 0.0 && c > 0.0)) {
+    throw std::invalid_argument("EllipsoidMesh: semi-axes must be > 0");
+  }
+  TriangleMesh sphere = IcosphereMesh(subdivisions);
+  Eigen::Matrix3Xd x = sphere.vertices();
+  x.row(0) *= a;
+  x.row(1) *= b;
+  x.row(2) *= c;
+  return TriangleMesh(std::move(x), sphere.triangles());
+}
+
+TriangleMesh BiconcaveMesh(int subdivisions, const BiconcaveParameters& p) {
+  if (!(p.radius > 0.0) || !(p.alpha > 0.0)) {
+    throw std::invalid_argument("BiconcaveMesh: radius and alpha must be > 0");
+  }
+  TriangleMesh sphere = IcosphereMesh(subdivisions);
+  const double big_r = p.radius * p.alpha;
+  Eigen::Matrix3Xd x = sphere.vertices();
+  for (int k = 0; k < x.cols(); ++k) {
+    const double cos_chi = x(1, k);                           // the symmetry axis is y
+    const double s2 = x(0, k) * x(0, k) + x(2, k) * x(2, k);  // sin^2 chi
+    x(0, k) *= big_r;
+    x(2, k) *= big_r;
+    x(1, k) = 0.5 * big_r * (p.c0 + p.c1 * s2 + p.c2 * s2 * s2) * cos_chi;
+  }
+  return TriangleMesh(std::move(x), sphere.triangles());
+}
+
+double BiconcaveVolume(const BiconcaveParameters& p) {
+  const double big_r = p.radius * p.alpha;
+  return 2.0 * kPi * big_r * big_r * big_r * (p.c0 / 3.0 + 2.0 * p.c1 / 15.0 + 8.0 * p.c2 / 105.0);
+}
+
+double SurfaceArea(const TriangleMesh& mesh) {
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  double area = 0.0;
+  for (const auto& t : mesh.triangles()) {
+    area +=
+        0.5 * (Column(x, t[1]) - Column(x, t[0])).cross(Column(x, t[2]) - Column(x, t[0])).norm();
+  }
+  return area;
+}
+
+double EnclosedVolume(const TriangleMesh& mesh) {
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  double volume = 0.0;
+  for (const auto& t : mesh.triangles()) {
+    volume += Column(x, t[0]).dot(Column(x, t[1]).cross(Column(x, t[2])));
+  }
+  return volume / 6.0;
+}
+
+Eigen::Vector3d Centroid(const TriangleMesh& mesh) {
+  // Sum over the tetrahedra (0, a, b, c): volume-weighted centroids (a + b + c) / 4.
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  double volume = 0.0;
+  for (const auto& t : mesh.triangles()) {
+    const double v = Column(x, t[0]).dot(Column(x, t[1]).cross(Column(x, t[2]))) / 6.0;
+    volume += v;
+    moment += v * (Column(x, t[0]) + Column(x, t[1]) + Column(x, t[2])) / 4.0;
+  }
+  return moment / volume;
+}
+
+SurfaceGeometry MeasureSurface(const TriangleMesh& mesh) {
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  const int nv = mesh.vertex_count();
+  SurfaceGeometry g;
+  g.vertex_area.assign(nv, 0.0);
+  g.normal.setZero(3, nv);
+  g.laplace_position.setZero(3, nv);
+  std::vector<double> angle_sum(nv, 0.0);
+  for (const auto& t : mesh.triangles()) {
+    const Eigen::Vector3d p[3] = {x.col(t[0]), x.col(t[1]), x.col(t[2])};
+    const Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);
+    const double area = 0.5 * n.norm();
+    double angle[3], cot[3];
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d u = p[(c + 1) % 3] - p[c], v = p[(c + 2) % 3] - p[c];
+      angle[c] = std::atan2(u.cross(v).norm(), u.dot(v));
+      cot[c] = Cotangent(u, v);
+      angle_sum[t[c]] += angle[c];
+      g.normal.col(t[c]) += n;  // area weighted (|n| = 2 area)
+    }
+    const bool obtuse = angle[0] > 0.5 * kPi || angle[1] > 0.5 * kPi || angle[2] > 0.5 * kPi;
+    for (int c = 0; c < 3; ++c) {
+      const int a = (c + 1) % 3, b = (c + 2) % 3;
+      if (!obtuse) {
+        // Voronoi: (|x_c x_a|^2 cot(angle b) + |x_c x_b|^2 cot(angle a)) / 8.
+        g.vertex_area[t[c]] +=
+            ((p[a] - p[c]).squaredNorm() * cot[b] + (p[b] - p[c]).squaredNorm() * cot[a]) / 8.0;
+      } else {
+        g.vertex_area[t[c]] += angle[c] > 0.5 * kPi ? area / 2.0 : area / 4.0;
+      }
+    }
+  }
+  for (const auto& e : mesh.edges()) {
+    const Eigen::Vector3d xa = x.col(e.a), xb = x.col(e.b);
+    const Eigen::Vector3d l = x.col(e.opposite_left), r = x.col(e.opposite_right);
+    const double w = Cotangent(xa - l, xb - l) + Cotangent(xa - r, xb - r);
+    g.laplace_position.col(e.a) += w * (xb - xa);
+    g.laplace_position.col(e.b) += w * (xa - xb);
+  }
+  g.mean_curvature.resize(nv);
+  g.gaussian_curvature.resize(nv);
+  for (int k = 0; k < nv; ++k) {
+    g.normal.col(k).normalize();
+    g.laplace_position.col(k) /= 2.0 * g.vertex_area[k];
+    g.mean_curvature[k] = -0.5 * g.laplace_position.col(k).dot(g.normal.col(k));
+    g.gaussian_curvature[k] = (2.0 * kPi - angle_sum[k]) / g.vertex_area[k];
+  }
+  return g;
+}
+
+std::vector<double> LaplaceBeltrami(const TriangleMesh& mesh, const std::vector<double>& area,
+                                    const std::vector<double>& f) {
+  const int nv = mesh.vertex_count();
+  if (static_cast<int>(f.size()) != nv || static_cast<int>(area.size()) != nv) {
+    throw std::invalid_argument("LaplaceBeltrami: f and area need one value per vertex");
+  }
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  std::vector<double> out(nv, 0.0);
+  for (const auto& e : mesh.edges()) {
+    const Eigen::Vector3d xa = x.col(e.a), xb = x.col(e.b);
+    const Eigen::Vector3d l = x.col(e.opposite_left), r = x.col(e.opposite_right);
+    const double w = Cotangent(xa - l, xb - l) + Cotangent(xa - r, xb - r);
+    out[e.a] += w * (f[e.b] - f[e.a]);
+    out[e.b] += w * (f[e.a] - f[e.b]);
+  }
+  for (int k = 0; k < nv; ++k) out[k] /= 2.0 * area[k];
+  return out;
+}
+
+MeshQuality MeasureQuality(const TriangleMesh& mesh) {
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  MeshQuality q;
+  q.min_edge = 1e300;
+  q.min_angle_deg = 180.0;
+  double sum = 0.0;
+  for (const auto& e : mesh.edges()) {
+    const double l = (x.col(e.a) - x.col(e.b)).norm();
+    q.min_edge = std::min(q.min_edge, l);
+    q.max_edge = std::max(q.max_edge, l);
+    sum += l;
+  }
+  q.mean_edge = sum / mesh.edge_count();
+  for (const auto& t : mesh.triangles()) {
+    const Eigen::Vector3d p[3] = {x.col(t[0]), x.col(t[1]), x.col(t[2])};
+    double len[3];
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d u = p[(c + 1) % 3] - p[c], v = p[(c + 2) % 3] - p[c];
+      const double angle = std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / kPi;
+      q.min_angle_deg = std::min(q.min_angle_deg, angle);
+      q.max_angle_deg = std::max(q.max_angle_deg, angle);
+      len[c] = (p[(c + 1) % 3] - p[c]).norm();
+    }
+    const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    const double s = 0.5 * (len[0] + len[1] + len[2]);
+    q.max_aspect_ratio =
+        std::max(q.max_aspect_ratio, len[0] * len[1] * len[2] * s / (8.0 * area * area));
+  }
+  q.min_valence = 1 << 30;
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    const int valence = static_cast<int>(mesh.vertex_edges(v).size());
+    q.min_valence = std::min(q.min_valence, valence);
+    q.max_valence = std::max(q.max_valence, valence);
+  }
+  return q;
+}
+
+std::string MeshQuality::Describe() const {
+  std::ostringstream o;
+  o << "edges " << min_edge << " .. " << max_edge << " (mean " << mean_edge << "), angles "
+    << min_angle_deg << " .. " << max_angle_deg << " deg, aspect ratio <= " << max_aspect_ratio
+    << ", valence " << min_valence << " .. " << max_valence;
+  return o.str();
+}
+
+}  // namespace ehd
