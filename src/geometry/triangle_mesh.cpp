@@ -25,9 +25,9 @@ double Cotangent(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
 TriangleMesh::TriangleMesh(Eigen::Matrix3Xd vertices, std::vector<Triangle> triangles)
     : vertices_(std::move(vertices)), triangles_(std::move(triangles)) {
   const int v = vertex_count();
-  if (v < 4 || triangles_.size() < 4) {
+  if (v < 3 || triangles_.size() < 2) {
     throw std::invalid_argument(
-        "TriangleMesh: a closed surface needs >= 4 vertices and >= 4 "
+        "TriangleMesh: a closed surface needs >= 3 vertices and >= 2 "
         "triangles (got " +
         std::to_string(v) + ", " + std::to_string(triangles_.size()) + ")");
   }

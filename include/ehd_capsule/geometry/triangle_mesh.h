@@ -32,9 +32,10 @@ class TriangleMesh {
   using Triangle = std::array<int, 3>;
 
   TriangleMesh() = default;
-  // Builds the topology; throws std::invalid_argument unless the surface is a closed, consistently
-  // oriented 2-manifold (every edge in exactly two triangles, traversed once each way) with
-  // vertex indices in range and no isolated vertex.
+  // Builds the topology; throws std::invalid_argument unless the surface is closed and
+  // consistently oriented (every edge in exactly two triangles, traversed once each way) with
+  // vertex indices in range and no isolated vertex. (A doubly covered triangle, the smallest such
+  // surface, is accepted: the membrane tests use it as a flat element.)
   TriangleMesh(Eigen::Matrix3Xd vertices, std::vector<Triangle> triangles);
 
   int vertex_count() const { return static_cast<int>(vertices_.cols()); }
