@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "ehd_capsule/coupling/capsule_stages_2d.h"
+#include "ehd_capsule/coupling/capsule_stages_3d.h"
 #include "ehd_capsule/geometry/initial_shapes.h"
 
 namespace ehd {
@@ -33,10 +34,30 @@ struct Simulation::Impl {
   std::unique_ptr<ViscosityContrastStage2D> viscosity;  // only with V != 1
   std::unique_ptr<MarkerStage2D> markers;
   std::unique_ptr<DiagnosticsStage2D> diagnostics;
+  // 3D (dimension: 3).
+  std::unique_ptr<MembraneSurface3D> surface;
+  std::unique_ptr<ImmersedBoundary3D> ib3;
+  std::unique_ptr<FluidStage3D> fluid3;
+  std::unique_ptr<MembraneStage3D> membrane3;
+  std::unique_ptr<SpreadStage3D> spread3;
+  std::unique_ptr<MarkerStage3D> markers3;
+  std::unique_ptr<DiagnosticsStage3D> diagnostics3;
+
   std::vector<StepStage*> stages;
   std::vector<std::string> not_built;  // "electric (why)", for the pipeline text
   double pending_ca = -1.0, pending_ca_e = -1.0;
   std::vector<double> empty;
+  std::vector<std::array<int, 3>> no_triangles;
+
+  bool three_d() const { return surface != nullptr; }
+  double& shear_rate() { return surface ? surface->shear_rate : body.shear_rate; }
+  void ApplyShearRate() {
+    if (fluid3) {
+      fluid3->ApplyShearRate();
+    } else {
+      fluid->ApplyShearRate();
+    }
+  }
 };
 
 namespace {
@@ -57,8 +78,11 @@ Eigen::Matrix2Xd InitialMarkers(const Scene& s, const LatticeUnits& u) {
       p.radius = a;
       return BiconcaveMarkers(s.M, p, centre);
     }
+    case InitialShape::kSphere:
+      break;  // 3D only (refused for dimension 2 by the scene validator)
   }
-  return {};
+  throw SceneError("scene " + s.name + ": shape " + ToString(s.geometry.shape) +
+                   " has no 2D marker set");
 }
 
 std::string Fmt(double v) {
@@ -72,6 +96,29 @@ std::string Fmt(double v) {
 Simulation::Simulation(const Scene& scene) : scene_(scene), units_(DeriveLatticeUnits(scene)) {
   impl_ = std::make_unique<Impl>();
   Impl& m = *impl_;
+  if (scene_.dimension == 3) {
+    m.surface = std::make_unique<MembraneSurface3D>();
+    MembraneSurface3D& surface = *m.surface;
+    surface.state = &state_;
+    surface.mesh = InitialSurface(scene_, units_);
+    surface.initial = surface.mesh.vertices();
+    surface.shear_rate = units_.shear_rate;
+    m.fluid3 = std::make_unique<FluidStage3D>(scene_, units_, surface);
+    grid3d_ = m.fluid3->lattice().grid();
+    m.ib3 = std::make_unique<ImmersedBoundary3D>(
+        grid3d_, std::array<bool, 3>{scene_.has_shear(), false, scene_.has_shear()});
+    m.membrane3 = std::make_unique<MembraneStage3D>(scene_, units_, surface);
+    m.spread3 = std::make_unique<SpreadStage3D>(*m.ib3, surface, m.fluid3->lattice());
+    m.markers3 =
+        std::make_unique<MarkerStage3D>(scene_, grid3d_, *m.ib3, surface, m.fluid3->lattice());
+    m.diagnostics3 =
+        std::make_unique<DiagnosticsStage3D>(scene_, units_, surface, m.fluid3->lattice());
+    m.stages = {m.membrane3.get(), m.spread3.get(), m.fluid3.get(), m.markers3.get(),
+                m.diagnostics3.get()};
+    m.not_built = {"electric (3D field not built yet)", "viscosity (V = 1)"};
+    Reset();
+    return;
+  }
   MembraneMarkers2D& body = m.body;
   body.state = &state_;
   body.initial = InitialMarkers(scene_, units_);
@@ -126,6 +173,19 @@ void MembraneMarkers2D::ResetTo(const Eigen::Matrix2Xd& positions) {
 
 void Simulation::Reset() {
   Impl& m = *impl_;
+  if (m.three_d()) {
+    m.surface->shear_rate = units_.shear_rate;
+    m.pending_ca = m.pending_ca_e = -1.0;
+    m.surface->ResetTo(m.surface->initial);
+    state_ = SimulationState();
+    state_.dimension = 3;
+    state_.ca = scene_.has_shear() ? scene_.Ca : 0.0;
+    m.fluid3->Reset();
+    for (StepStage* stage : m.stages) {
+      if (stage != m.fluid3.get()) stage->Reset();
+    }
+    return;
+  }
   m.body.shear_rate = units_.shear_rate;
   m.body.field = units_.field;
   m.pending_ca = m.pending_ca_e = -1.0;
@@ -143,12 +203,33 @@ void Simulation::Reset() {
 bool Simulation::has_electric_field() const { return impl_->electric != nullptr; }
 bool Simulation::has_bending() const { return scene_.has_bending(); }
 bool Simulation::has_viscosity_contrast() const { return impl_->viscosity != nullptr; }
-const std::vector<double>& Simulation::ux() const { return impl_->fluid->lattice().ux(); }
-const std::vector<double>& Simulation::uy() const { return impl_->fluid->lattice().uy(); }
+const std::vector<double>& Simulation::ux() const {
+  return impl_->fluid3 ? impl_->fluid3->lattice().ux() : impl_->fluid->lattice().ux();
+}
+const std::vector<double>& Simulation::uy() const {
+  return impl_->fluid3 ? impl_->fluid3->lattice().uy() : impl_->fluid->lattice().uy();
+}
+const std::vector<double>& Simulation::uz() const {
+  if (!impl_->fluid3) throw std::logic_error("Simulation::uz: a 2D simulation has no z velocity");
+  return impl_->fluid3->lattice().velocity(2);
+}
+const Grid2D& Simulation::grid() const {
+  if (impl_->three_d()) throw std::logic_error("Simulation::grid: a 3D simulation has grid3d()");
+  return grid_;
+}
+const Grid3D& Simulation::grid3d() const {
+  if (!impl_->three_d()) throw std::logic_error("Simulation::grid3d: a 2D simulation has grid()");
+  return grid3d_;
+}
+const std::vector<std::array<int, 3>>& Simulation::triangles() const {
+  return impl_->three_d() ? impl_->surface->mesh.triangles() : impl_->no_triangles;
+}
 const std::vector<double>& Simulation::potential() const {
   return impl_->electric ? impl_->electric->potential() : impl_->empty;
 }
-long Simulation::marker_redistributions() const { return impl_->markers->redistributions(); }
+long Simulation::marker_redistributions() const {
+  return impl_->markers ? impl_->markers->redistributions() : 0;
+}
 
 void Simulation::SetCaE(double ca_e) {
   const double max = scene_.electric.max_ca_e;
@@ -198,8 +279,8 @@ void Simulation::Step() {
   Impl& m = *impl_;
   // Queued changes (applied before the step, turtlesim-style).
   if (m.pending_ca >= 0.0) {
-    m.body.shear_rate = ShearRateForCa(units_, m.pending_ca);
-    m.fluid->ApplyShearRate();
+    m.shear_rate() = ShearRateForCa(units_, m.pending_ca);
+    m.ApplyShearRate();
     state_.ca = m.pending_ca;
     m.pending_ca = -1.0;
   }
@@ -265,12 +346,16 @@ void Simulation::Save(const std::string& path) const {
   w.Pod(state_.ca_e);
   w.Pod(state_.gmres_iterations);
   w.Pod(state_.gmres_residual);
-  w.Pod(m.body.shear_rate);
+  w.Pod(m.three_d() ? m.surface->shear_rate : m.body.shear_rate);
   w.Pod(m.body.field);
   w.Pod(m.pending_ca);
   w.Pod(m.pending_ca_e);
   w.Section("markers positions");
-  w.Mat(m.body.X);
+  if (m.three_d()) {
+    w.Mat(m.surface->mesh.vertices());
+  } else {
+    w.Mat(m.body.X);
+  }
   for (const StepStage* stage : m.stages) {
     w.Section(stage->name());
     stage->Save(w);
@@ -301,15 +386,22 @@ void Simulation::Restore(const std::string& path) {
   s.ca_e = r.Pod<double>();
   s.gmres_iterations = r.Pod<int>();
   s.gmres_residual = r.Pod<double>();
-  m.body.shear_rate = r.Pod<double>();
+  m.shear_rate() = r.Pod<double>();
   m.body.field = r.Pod<double>();
   m.pending_ca = r.Pod<double>();
   m.pending_ca_e = r.Pod<double>();
   r.ExpectSection("markers positions");
-  Eigen::Matrix2Xd X = r.Mat<2>();
-  if (X.cols() != m.body.initial.cols()) r.Fail("marker count differs");
-  m.body.X = X;
-  m.body.curve.Update(m.body.X);
+  if (m.three_d()) {
+    const Eigen::Matrix3Xd X = r.Mat<3>();
+    if (X.cols() != m.surface->initial.cols()) r.Fail("vertex count differs");
+    m.surface->mesh.SetVertices(X);
+    s.dimension = 3;
+  } else {
+    Eigen::Matrix2Xd X = r.Mat<2>();
+    if (X.cols() != m.body.initial.cols()) r.Fail("marker count differs");
+    m.body.X = X;
+    m.body.curve.Update(m.body.X);
+  }
   state_ = s;
   for (StepStage* stage : m.stages) {
     r.ExpectSection(stage->name());

@@ -37,26 +37,6 @@ std::vector<double> MarkerArcElements(const ClosedCurve& c) {
   return dl;
 }
 
-void MarkerAdvector::Advance(const Eigen::Matrix2Xd& velocity, double dt, Eigen::Matrix2Xd& X) {
-  if (velocity.cols() != X.cols()) {
-    throw std::invalid_argument("MarkerAdvector: " + std::to_string(velocity.cols()) +
-                                " velocities for " + std::to_string(X.cols()) + " markers");
-  }
-  if (!(dt > 0.0))
-    throw std::invalid_argument("MarkerAdvector: dt must be > 0, got " + std::to_string(dt));
-  const bool ab2 = scheme_ == MarkerIntegrator::kAdamsBashforth2 && has_previous_ &&
-                   previous_velocity_.cols() == velocity.cols();
-  if (ab2) {
-    X += dt * (1.5 * velocity - 0.5 * previous_velocity_);
-  } else {
-    X += dt * velocity;
-  }
-  if (scheme_ == MarkerIntegrator::kAdamsBashforth2) {
-    previous_velocity_ = velocity;  // same size after the first step: no allocation
-    has_previous_ = true;
-  }
-}
-
 double WrapCurveIntoDomain(const Grid2D& grid, Eigen::Matrix2Xd& X) {
   if (X.cols() == 0) return 0.0;
   const double width = grid.width();
@@ -66,6 +46,17 @@ double WrapCurveIntoDomain(const Grid2D& grid, Eigen::Matrix2Xd& X) {
   const double shift = -periods * width;
   X.row(0).array() += shift;
   return shift;
+}
+
+void WrapSurfaceIntoDomain(const Grid3D& grid, const std::array<bool, 3>& periodic,
+                           Eigen::Matrix3Xd& X) {
+  if (X.cols() == 0) return;
+  for (int a = 0; a < 3; ++a) {
+    if (!periodic[a]) continue;
+    const double width = grid.extent(a) * grid.h;
+    const double periods = std::floor((X.row(a).mean() - grid.origin(a)) / width);
+    if (periods != 0.0) X.row(a).array() -= periods * width;
+  }
 }
 
 }  // namespace ehd

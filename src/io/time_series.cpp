@@ -25,12 +25,14 @@ void TimeSeriesCsv::Write(const Simulation& sim) {
   const SimulationState& s = sim.state();
   const double a = sim.units().radius;
   const double t_scale = sim.units().tension * a;
+  // The area column: enclosed area / (pi a^2) in 2D, enclosed volume / (4/3 pi a^3) in 3D.
+  const double size_scale = s.dimension == 3 ? 4.0 / 3.0 * M_PI * a * a * a : M_PI * a * a;
   char line[512];
   std::snprintf(line, sizeof line,
                 "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g\n", s.step,
-                s.time, s.dxy, s.inclination, s.area / (M_PI * a * a), s.tt_phase, s.area_drift,
-                s.ca, s.ca_e, s.electric_force_total.x() / t_scale,
-                s.electric_force_total.y() / t_scale, s.gmres_iterations, s.max_mach);
+                s.time, s.dxy, s.inclination, s.area / size_scale, s.tt_phase, s.area_drift, s.ca,
+                s.ca_e, s.electric_force_total.x() / t_scale, s.electric_force_total.y() / t_scale,
+                s.gmres_iterations, s.max_mach);
   out_ << line;
   if (!out_) throw std::runtime_error("writing the time series " + path_ + " failed");
 }

@@ -185,6 +185,11 @@ void CapsuleNode::ReadParameters() {
 
 void CapsuleNode::BuildSimulation() {
   scene_ = LoadScene(scene_name_, overrides_);
+  if (scene_.dimension == 3) {
+    throw SceneError("scene " + scene_.name +
+                     " is 3D: the node publishes 2D scenes so far (run 3D scenes with "
+                     "`ehd_sim run`)");
+  }
   sim_ = std::make_unique<Simulation>(scene_);
 }
 

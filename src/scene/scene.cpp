@@ -237,20 +237,37 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
   s.description = top.Text("description", "");
   if (top.Has("name")) s.name = top.Text("name", "");
 
-  s.N = static_cast<int>(top.Integer("N", 16, 4096, std::nullopt, "grid cells across the domain"));
-  s.M = static_cast<int>(top.Integer("M", 8, 100000, std::nullopt, "markers on the membrane"));
+  s.dimension = static_cast<int>(top.Integer("dimension", 2, 3, 2, "spatial dimension"));
+  const bool three_d = s.dimension == 3;
+  s.N = static_cast<int>(top.Integer(
+      "N", 16, three_d ? 512 : 4096, std::nullopt,
+      three_d ? "grid cells along each axis (N^3 nodes)" : "grid cells across the domain"));
+  if (three_d) {
+    top.Forbid("M", "a 3D membrane is a triangulated surface: set mesh_subdivisions instead");
+    s.mesh_subdivisions = static_cast<int>(top.Integer(
+        "mesh_subdivisions", 1, 6, std::nullopt,
+        "icosphere subdivisions of the membrane mesh: 3 = 642, 4 = 2562, 5 = 10242 vertices"));
+    s.M = 10 * (1 << (2 * s.mesh_subdivisions)) + 2;
+  } else {
+    top.Forbid("mesh_subdivisions", "only dimension: 3 has a triangulated membrane (2D: M)");
+    s.M = static_cast<int>(top.Integer("M", 8, 100000, std::nullopt, "markers on the membrane"));
+  }
 
   // Geometry.
   {
     BlockReader g(top.Child("geometry"), "geometry", origin);
     if (!top.Has("geometry")) top.Fail("'geometry'", "missing (block with shape, half_width)");
     const std::string shape =
-        g.Choice("shape", {"circle", "ellipse", "biconcave"}, std::nullopt, "initial shape");
+        three_d
+            ? g.Choice("shape", {"sphere", "biconcave"}, std::nullopt, "initial 3D shape")
+            : g.Choice("shape", {"circle", "ellipse", "biconcave"}, std::nullopt, "initial shape");
     s.geometry.shape = shape == "circle"    ? InitialShape::kCircle
                        : shape == "ellipse" ? InitialShape::kEllipse
+                       : shape == "sphere"  ? InitialShape::kSphere
                                             : InitialShape::kBiconcave;
     s.geometry.half_width = g.Number("half_width", LeftOpen(1.0, 1000.0), std::nullopt,
-                                     "domain half-width L in units of the radius a");
+                                     three_d ? "half the box edge L in units of the radius a"
+                                             : "domain half-width L in units of the radius a");
     if (s.geometry.shape == InitialShape::kEllipse) {
       s.geometry.aspect_ratio = g.Number("aspect_ratio", LeftOpen(0.0, 1.0), std::nullopt,
                                          "minor/major semi-axis of the initial ellipse");
@@ -259,6 +276,11 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
     }
     s.geometry.center_x = g.Number("center_x", Closed(-1000, 1000), 0.0, "x offset / a");
     s.geometry.center_y = g.Number("center_y", Closed(-1000, 1000), 0.0, "y offset / a");
+    if (three_d) {
+      s.geometry.center_z = g.Number("center_z", Closed(-1000, 1000), 0.0, "z offset / a");
+    } else {
+      g.Forbid("center_z", "a 2D scene has no z axis");
+    }
     g.RejectUnknown();
   }
 
@@ -270,7 +292,7 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
       top.Choice("flow", {"shear", "none"}, std::nullopt, "imposed flow: shear walls or none");
   s.flow = flow == "none" ? FlowKind::kNone : FlowKind::kShear;
 
-  const std::string tension = s.membrane == MembraneKind::kDrop ? "gamma" : "E_s";
+  const std::string tension = s.membrane == MembraneKind::kDrop ? "gamma" : three_d ? "G_s" : "E_s";
   if (s.has_shear()) {
     s.Ca =
         top.Number("Ca", LeftOpen(0.0, 10.0), std::nullopt, "capillary number mu k a / " + tension);
@@ -289,12 +311,48 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
     top.Forbid("max_Ca", "there is no shear rate with flow: none");
     top.Forbid("Re", "there is no shear rate with flow: none (use Oh)");
   }
+  if (three_d && s.membrane == MembraneKind::kDrop) {
+    for (const char* key : {"law", "C", "c0"}) {
+      top.Forbid(key, "a drop has a surface tension only (law, C and c0 are capsule keys)");
+    }
+  } else if (three_d) {
+    const std::string law = top.Choice("law", {"neo_hookean", "zero_thickness", "skalak"},
+                                       std::nullopt, "3D membrane law (song2019 eqs. 137-139)");
+    s.law = law == "skalak"           ? SurfaceLawKind::kSkalak
+            : law == "zero_thickness" ? SurfaceLawKind::kZeroThickness
+                                      : SurfaceLawKind::kNeoHookean;
+    if (s.law == SurfaceLawKind::kSkalak) {
+      s.area_dilation = top.Number("C", LeftOpen(0.0, 1e6), std::nullopt,
+                                   "Skalak area-dilation to shear modulus ratio");
+    } else {
+      top.Forbid("C", "only law: skalak has an area-dilation modulus");
+    }
+    s.c0 = top.Number("c0", Closed(-100.0, 100.0), 0.0,
+                      "spontaneous curvature times a (Helfrich bending)");
+    for (const char* key : {"eta", "prestress"}) {
+      if (top.Has(key)) {
+        const double v = top.Number(key, Closed(0.0, 0.0), 0.0,
+                                    "membrane viscosity and prestress are not built in 3D yet");
+        (void)v;
+      }
+    }
+  } else {
+    for (const char* key : {"law", "C", "c0"}) {
+      top.Forbid(key,
+                 "2D capsules have their own law (Hookean fibre, E_b, eta); law, C and c0 "
+                 "are for dimension: 3");
+    }
+  }
+  const std::string modulus = three_d ? "G_s" : "E_s";
   if (s.membrane == MembraneKind::kCapsule) {
-    s.E_b = top.Number("E_b", Closed(0.0, 10.0), std::nullopt, "bending modulus E_B / (a^2 E_s)");
-    s.eta = top.Number("eta", Closed(0.0, 100.0), std::nullopt,
-                       "membrane viscosity ratio mu_s / (a mu)");
-    s.prestress = top.Number("prestress", Closed(0.0, 10.0), 0.0,
-                             "isotropic membrane pre-tension tau_p / E_s");
+    s.E_b = top.Number("E_b", Closed(0.0, 10.0), std::nullopt,
+                       "bending modulus E_B / (a^2 " + modulus + ")");
+    if (!three_d) {
+      s.eta = top.Number("eta", Closed(0.0, 100.0), std::nullopt,
+                         "membrane viscosity ratio mu_s / (a mu)");
+      s.prestress = top.Number("prestress", Closed(0.0, 10.0), 0.0,
+                               "isotropic membrane pre-tension tau_p / E_s");
+    }
   } else {
     for (const char* key : {"E_b", "eta", "prestress"}) {
       if (top.Has(key)) {
@@ -307,12 +365,21 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
   }
   s.V =
       top.Number("V", Closed(0.01, 100.0), std::nullopt, "viscosity ratio mu_inside / mu_outside");
+  if (three_d && s.V != 1.0) {
+    top.Fail("'V'", "= " + FormatNumber(s.V) +
+                        ": a viscosity contrast is not built in 3D yet (dimension: 3 accepts 1)");
+  }
 
   // Electric field: present iff Ca_E > 0 or an explicit `electric:` block.
   const bool electric_block = top.Present("electric");
   s.Ca_E = top.Number("Ca_E", Closed(0.0, 100.0), 0.0,
                       "electric capillary number eps+ a E^2 / " + tension);
   s.electric_field = s.Ca_E > 0.0 || electric_block;
+  if (three_d && s.electric_field) {
+    top.Fail(electric_block ? "'electric'" : "'Ca_E'",
+             "the 3D electric field is not built yet (dimension: 3 needs Ca_E = 0 and no "
+             "electric block)");
+  }
   {
     BlockReader e(top.Child("electric"), "electric", origin);
     s.electric.max_ca_e =
@@ -362,9 +429,10 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
     s.numerics.redistribute_markers =
         n.Number("redistribute_markers", Closed(0.0, 1e6), 0.0,
                  "drops: re-space the markers evenly when max/min spacing exceeds this; 0 = off");
-    s.numerics.marker_filter_every =
-        static_cast<int>(n.Integer("marker_filter_every", 0, 1000000000, 100,
-                                   "smooth the markers' sawtooth mode every n steps; 0 = off"));
+    s.numerics.marker_filter_every = static_cast<int>(
+        n.Integer("marker_filter_every", 0, three_d ? 0 : 1000000000, three_d ? 0 : 100,
+                  three_d ? "the sawtooth filter is for 2D marker chains; 0 in 3D"
+                          : "smooth the markers' sawtooth mode every n steps; 0 = off"));
     if (s.numerics.redistribute_markers != 0.0 && s.numerics.redistribute_markers <= 1.0) {
       throw SceneError("scene " + origin + ": numerics.redistribute_markers = " +
                        std::to_string(s.numerics.redistribute_markers) +
@@ -391,11 +459,24 @@ const char* ToString(InitialShape shape) {
       return "ellipse";
     case InitialShape::kBiconcave:
       return "biconcave";
+    case InitialShape::kSphere:
+      return "sphere";
   }
   return "?";
 }
 const char* ToString(MembraneKind kind) { return kind == MembraneKind::kDrop ? "drop" : "capsule"; }
 const char* ToString(FlowKind kind) { return kind == FlowKind::kShear ? "shear" : "none"; }
+const char* ToString(SurfaceLawKind law) {
+  switch (law) {
+    case SurfaceLawKind::kNeoHookean:
+      return "neo_hookean";
+    case SurfaceLawKind::kZeroThickness:
+      return "zero_thickness";
+    case SurfaceLawKind::kSkalak:
+      return "skalak";
+  }
+  return "?";
+}
 const char* ToString(MarkerTimeScheme scheme) {
   return scheme == MarkerTimeScheme::kAdamsBashforth2 ? "adams_bashforth2" : "forward_euler";
 }
@@ -490,6 +571,13 @@ Scene LoadScene(const std::string& name_or_path, const std::vector<std::string>&
 std::string DescribeScene(const Scene& s) {
   std::ostringstream out;
   out << "scene " << s.name << (s.description.empty() ? "" : ": " + s.description) << '\n';
+  if (s.dimension == 3) {
+    out << "  3D: " << ToString(s.law) << " membrane";
+    if (s.law == SurfaceLawKind::kSkalak) out << " (C = " << s.area_dilation << ")";
+    out << ", mesh " << s.M << " vertices (subdivision " << s.mesh_subdivisions << ")";
+    if (s.c0 != 0.0) out << ", c0 a = " << s.c0;
+    out << '\n';
+  }
   out << "  membrane " << ToString(s.membrane) << ", shape " << ToString(s.geometry.shape)
       << ", flow " << ToString(s.flow) << ", electric field " << (s.electric_field ? "on" : "off")
       << '\n';
@@ -505,7 +593,8 @@ std::string DescribeScene(const Scene& s) {
   if (s.electric_field) {
     out << "  Ca_E = " << s.Ca_E << ", sigma_r = " << s.sigma_r << ", eps_r = " << s.eps_r << '\n';
   }
-  out << "  N = " << s.N << ", M = " << s.M << ", L/a = " << s.geometry.half_width;
+  out << "  N = " << s.N << (s.dimension == 3 ? " (N^3)" : "") << ", M = " << s.M
+      << ", L/a = " << s.geometry.half_width;
   if (s.geometry.shape == InitialShape::kEllipse) out << ", b/a = " << s.geometry.aspect_ratio;
   out << '\n';
   for (const auto& o : s.overrides) out << "  override " << o << '\n';

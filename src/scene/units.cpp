@@ -65,10 +65,14 @@ double ShearRateForCa(const LatticeUnits& u, double ca) {
 std::string DescribeUnits(const Scene& s, const LatticeUnits& u) {
   std::ostringstream out;
   out << std::setprecision(5);
-  const char* t = s.membrane == MembraneKind::kDrop ? "gamma" : "E_s";
+  const char* t = s.membrane == MembraneKind::kDrop ? "gamma" : s.dimension == 3 ? "G_s" : "E_s";
   out << "lattice values (h = dt = rho = 1):\n"
-      << "  grid " << s.N << " x " << s.N << ", L = " << u.half_width << ", a = " << u.radius
-      << " cells, " << s.M << " markers (spacing " << 2.0 * M_PI * u.radius / s.M << " h)\n"
+      << "  grid " << s.N << " x " << s.N << (s.dimension == 3 ? " x " + std::to_string(s.N) : "")
+      << ", L = " << u.half_width << ", a = " << u.radius << " cells, " << s.M
+      << (s.dimension == 3 ? " vertices (mean edge ~" : " markers (spacing ")
+      << (s.dimension == 3 ? u.radius * std::sqrt(8.0 * M_PI / (std::sqrt(3.0) * (s.M - 2)))
+                           : 2.0 * M_PI * u.radius / s.M)
+      << " h)\n"
       << "  tau = " << u.tau << " (nu = " << u.viscosity << ")";
   if (s.V != 1.0) out << ", inner tau = " << u.tau_inner << " (nu = " << u.viscosity_inner << ")";
   out << '\n';

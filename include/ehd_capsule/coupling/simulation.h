@@ -12,6 +12,8 @@
 //   4. fluid: one LBM step (eqs. (97), (107)-(108));
 //   5. markers: interpolate u^{n+1} (eq. (104)) and move them (eq. (105), or AB2);
 //   6. diagnostics: shape, tank-treading phase, the public state.
+// A scene with dimension: 3 builds the 3D stages instead (capsule_stages_3d.h: triangulated
+// capsule, D3Q19 fluid; no field yet).
 // Only what the scene needs is built: no electric stage nor its buffers without a field, no
 // bending term with E_b = 0, no viscosity stage with V = 1. The printed pipeline and the
 // checkpoint are assembled from the stages that were built.
@@ -21,6 +23,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -59,9 +62,15 @@ class Simulation {
   const SimulationState& state() const { return state_; }
   const Scene& scene() const { return scene_; }
   const LatticeUnits& units() const { return units_; }
-  const Grid2D& grid() const { return grid_; }
+  int dimension() const { return scene_.dimension; }
+  // The fluid grid: grid() in 2D, grid3d() in 3D (each throws std::logic_error in the other).
+  const Grid2D& grid() const;
+  const Grid3D& grid3d() const;
   const std::vector<double>& ux() const;
   const std::vector<double>& uy() const;
+  const std::vector<double>& uz() const;  // 3D only (throws std::logic_error in 2D)
+  // 3D: the membrane's triangles (vertex indices into state().markers); empty in 2D.
+  const std::vector<std::array<int, 3>>& triangles() const;
   // Electric potential on the grid (empty without field).
   const std::vector<double>& potential() const;
   std::string Pipeline() const;  // the stages built, one per line, and those left out
@@ -81,6 +90,7 @@ class Simulation {
   Scene scene_;
   LatticeUnits units_;
   Grid2D grid_;
+  Grid3D grid3d_;
   SimulationState state_;
   std::unique_ptr<Impl> impl_;  // last: its stages refer to the members above
 };

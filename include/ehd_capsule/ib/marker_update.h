@@ -13,6 +13,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "ehd_capsule/geometry/closed_curve.h"
@@ -31,24 +34,44 @@ void MarkerArcElementsFromSegments(const std::vector<double>& segment_length,
 
 enum class MarkerIntegrator { kForwardEuler, kAdamsBashforth2 };
 
-class MarkerAdvector {
+// Advances Lagrangian points (2D markers or 3D vertices: D rows) with the interpolated velocity.
+template <int D>
+class PointAdvector {
  public:
-  explicit MarkerAdvector(MarkerIntegrator scheme = MarkerIntegrator::kForwardEuler)
+  using Points = Eigen::Matrix<double, D, Eigen::Dynamic>;
+  explicit PointAdvector(MarkerIntegrator scheme = MarkerIntegrator::kForwardEuler)
       : scheme_(scheme) {}
   MarkerIntegrator scheme() const { return scheme_; }
   // X += dt * (scheme's combination of U and the previous call's U). Throws if sizes differ.
-  void Advance(const Eigen::Matrix2Xd& velocity, double dt, Eigen::Matrix2Xd& X);
+  void Advance(const Points& velocity, double dt, Points& X) {
+    if (velocity.cols() != X.cols()) {
+      throw std::invalid_argument("PointAdvector: " + std::to_string(velocity.cols()) +
+                                  " velocities for " + std::to_string(X.cols()) + " points");
+    }
+    if (!(dt > 0.0)) {
+      throw std::invalid_argument("PointAdvector: dt must be > 0, got " + std::to_string(dt));
+    }
+    const bool ab2 = scheme_ == MarkerIntegrator::kAdamsBashforth2 && has_previous_ &&
+                     previous_velocity_.cols() == velocity.cols();
+    if (ab2) {
+      X += dt * (1.5 * velocity - 0.5 * previous_velocity_);
+    } else {
+      X += dt * velocity;
+    }
+    if (scheme_ == MarkerIntegrator::kAdamsBashforth2) {
+      previous_velocity_ = velocity;  // same size after the first step: no allocation
+      has_previous_ = true;
+    }
+  }
   // Forgets the previous velocity (e.g. after remeshing); the next step is Euler.
   void Reset() { has_previous_ = false; }
 
   // The previous velocity AB2 combines with the next one (checkpoints, re-spacing of markers).
   bool has_previous_velocity() const { return has_previous_; }
-  const Eigen::Matrix2Xd& previous_velocity() const { return previous_velocity_; }
-  // nullptr when there is none; the caller may resample it in place (same marker count).
-  Eigen::Matrix2Xd* mutable_previous_velocity() {
-    return has_previous_ ? &previous_velocity_ : nullptr;
-  }
-  void SetPreviousVelocity(const Eigen::Matrix2Xd& velocity, bool has_previous) {
+  const Points& previous_velocity() const { return previous_velocity_; }
+  // nullptr when there is none; the caller may resample it in place (same point count).
+  Points* mutable_previous_velocity() { return has_previous_ ? &previous_velocity_ : nullptr; }
+  void SetPreviousVelocity(const Points& velocity, bool has_previous) {
     previous_velocity_ = velocity;
     has_previous_ = has_previous;
   }
@@ -56,11 +79,17 @@ class MarkerAdvector {
  private:
   MarkerIntegrator scheme_;
   bool has_previous_ = false;
-  Eigen::Matrix2Xd previous_velocity_;
+  Points previous_velocity_;
 };
+
+using MarkerAdvector = PointAdvector<2>;
 
 // Shifts X by an integer number of domain widths so that mean(X.row(0)) is in [x0, x0 + width).
 // Returns the shift applied (0 if none).
 double WrapCurveIntoDomain(const Grid2D& grid, Eigen::Matrix2Xd& X);
+// 3D: the same for each periodic axis flagged (x and z for the shear walls), by the mean of the
+// vertices along that axis.
+void WrapSurfaceIntoDomain(const Grid3D& grid, const std::array<bool, 3>& periodic,
+                           Eigen::Matrix3Xd& X);
 
 }  // namespace ehd

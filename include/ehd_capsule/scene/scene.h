@@ -28,18 +28,21 @@ struct SceneError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-enum class InitialShape { kCircle, kEllipse, kBiconcave };
+enum class InitialShape { kCircle, kEllipse, kBiconcave, kSphere };  // kSphere: 3D only
 // kDrop: interfacial tension gamma only. kCapsule: Hookean shear elasticity E_s, plus the
 // Kelvin-Voigt membrane viscosity when eta > 0 and bending when E_b > 0.
 enum class MembraneKind { kDrop, kCapsule };
 // kShear: walls at y = +-L move at +-k L (u = (k y, 0)); kNone: closed box, fluid at rest.
 enum class FlowKind { kShear, kNone };
 enum class MarkerTimeScheme { kForwardEuler, kAdamsBashforth2 };
+// 3D capsule membrane laws (song2019 eqs. (137)-(139); membrane/surface_elasticity.h).
+enum class SurfaceLawKind { kNeoHookean, kZeroThickness, kSkalak };
 
 const char* ToString(InitialShape shape);
 const char* ToString(MembraneKind kind);
 const char* ToString(FlowKind kind);
 const char* ToString(MarkerTimeScheme scheme);
+const char* ToString(SurfaceLawKind law);
 
 struct SceneGeometry {
   InitialShape shape = InitialShape::kCircle;
@@ -47,6 +50,7 @@ struct SceneGeometry {
   double aspect_ratio = 1.0;  // ellipse: minor / major semi-axis (area pi a^2), x-major
   double center_x = 0.0;      // initial centroid offset in units of a
   double center_y = 0.0;
+  double center_z = 0.0;  // 3D only
 };
 
 struct SceneElectric {
@@ -96,8 +100,16 @@ struct Scene {
   double Ca_E = 0.0;
   double sigma_r = 1.0;
   double eps_r = 1.0;
-  int N = 0;  // grid cells across the domain
-  int M = 0;  // markers on the membrane
+  int N = 0;  // grid cells across the domain (N^2 in 2D, N^3 in 3D)
+  int M = 0;  // markers on the membrane (2D)
+
+  // 3D (dimension: 3): a triangulated capsule (geometry/triangle_mesh.h) with a finite-element
+  // membrane law; no drop, membrane viscosity, viscosity contrast or field yet.
+  int dimension = 2;
+  int mesh_subdivisions = 0;  // icosphere level: 10 4^k + 2 vertices
+  SurfaceLawKind law = SurfaceLawKind::kNeoHookean;
+  double area_dilation = 0.0;  // Skalak C
+  double c0 = 0.0;             // spontaneous curvature times a (Helfrich)
 
   SceneGeometry geometry;
   MembraneKind membrane = MembraneKind::kCapsule;

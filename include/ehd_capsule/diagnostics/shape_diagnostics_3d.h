@@ -1,0 +1,30 @@
+// Shape measures of a 3D capsule (triangulated surface): volume, surface area, centroid, and the
+// equivalent ellipsoid of the enclosed volume's second-moment tensor.
+//
+// S = int_V (x - x_c)(x - x_c)^T dV, by the divergence theorem over the tetrahedra (p, a, b, c)
+// of each triangle with a reference point p: a tetrahedron with vertices v_0..v_3 has
+//   int x x^T dV = (V_t / 20) (sum v_i v_i^T + (sum v_i)(sum v_i)^T).
+// An ellipsoid with semi-axes a_i has S = (V/5) diag(a_i^2), so a_i = sqrt(5 lambda_i / V). In
+// the shear flow u = (k y, 0, 0) the vorticity axis is z: of the three principal axes, the one
+// closest to z is left out, and the Taylor deformation and the inclination are those of the
+// other two, in the shear plane (Ramanujan & Pozrikidis 1998; Lac et al. 2004):
+//   D_xy = (L - B)/(L + B) (L, B the larger and smaller of the two semi-axes), theta = the angle
+//   of the L axis's projection on x-y from +x, in (-pi/2, pi/2].
+#pragma once
+
+#include <Eigen/Core>
+
+#include "ehd_capsule/geometry/triangle_mesh.h"
+
+namespace ehd {
+
+struct ShapeDiagnostics3D {
+  double volume = 0, area = 0;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  Eigen::Vector3d semi_axes = Eigen::Vector3d::Zero();  // of the equivalent ellipsoid, descending
+  double dxy = 0, inclination = 0;                      // in the shear plane x-y
+};
+
+ShapeDiagnostics3D MeasureShape3D(const TriangleMesh& mesh);
+
+}  // namespace ehd

@@ -1,0 +1,392 @@
+// The 3D coupled step's stages (see capsule_stages_3d.h): a triangulated capsule in the D3Q19
+// fluid, coupled by the 3D cosine-delta immersed boundary (song2019 sec. 3.2 and 3.4, ch. 6).
+#include "ehd_capsule/coupling/capsule_stages_3d.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "ehd_capsule/membrane/membrane_stability.h"
+
+namespace ehd {
+namespace {
+
+std::string Fmt(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+SurfaceLaw LawOf(const Scene& s) {
+  switch (s.law) {
+    case SurfaceLawKind::kSkalak:
+      return SurfaceLaw::kSkalak;
+    case SurfaceLawKind::kZeroThickness:
+      return SurfaceLaw::kZeroThickness;
+    case SurfaceLawKind::kNeoHookean:
+      break;
+  }
+  return SurfaceLaw::kNeoHookean;
+}
+
+MarkerIntegrator IntegratorOf(const Scene& scene) {
+  return scene.numerics.integrator == MarkerTimeScheme::kAdamsBashforth2
+             ? MarkerIntegrator::kAdamsBashforth2
+             : MarkerIntegrator::kForwardEuler;
+}
+
+}  // namespace
+
+TriangleMesh InitialSurface(const Scene& s, const LatticeUnits& u) {
+  const double a = u.radius;
+  TriangleMesh mesh;
+  if (s.geometry.shape == InitialShape::kBiconcave) {
+    BiconcaveParameters p;
+    p.radius = a;
+    mesh = BiconcaveMesh(s.mesh_subdivisions, p);
+  } else {
+    mesh = IcosphereMesh(s.mesh_subdivisions, a);
+  }
+  const Eigen::Vector3d centre(s.geometry.center_x * a, s.geometry.center_y * a,
+                               s.geometry.center_z * a);
+  mesh.SetVertices(mesh.vertices().colwise() + centre);
+  return mesh;
+}
+
+void MembraneSurface3D::ResetTo(const Eigen::Matrix3Xd& positions) {
+  mesh.SetVertices(positions);
+  const Eigen::Index n = positions.cols();
+  U.setZero(3, n);
+  elastic_force.setZero(3, n);
+  bending_force.setZero(3, n);
+  force.setZero(3, n);
+  initial_volume = EnclosedVolume(mesh);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+MembraneStage3D::MembraneStage3D(const Scene& scene, const LatticeUnits& units,
+                                 MembraneSurface3D& body)
+    : body_(body) {
+  if (scene.membrane == MembraneKind::kDrop) {
+    tension_ = units.tension;
+    const MeshQuality q = MeasureQuality(body.mesh);
+    const MembraneStabilityLimits limits =
+        EstimateMembraneStability(tension_, 0.0, 0.0, 0.0, units.viscosity, 1.0, q.min_edge);
+    const double dt_stable =
+        limits.min_dt() *
+        (scene.numerics.integrator == MarkerTimeScheme::kForwardEuler ? 2.0 : 1.0);
+    if (dt_stable < 1.0) {
+      throw SceneError("scene " + scene.name +
+                       ": membrane explicit limit exceeded by the tension (Ca) term: stable "
+                       "lattice dt " +
+                       Fmt(dt_stable) + " < 1; set numerics.membrane_substeps >= " +
+                       std::to_string(static_cast<int>(
+                           std::ceil(scene.numerics.membrane_substeps / dt_stable))));
+    }
+    stability_ = "explicit limit dt <= " + Fmt(dt_stable);
+    return;
+  }
+  SurfaceLawParameters law;
+  law.law = LawOf(scene);
+  law.shear_modulus = units.tension;  // G_s
+  law.area_dilation = scene.law == SurfaceLawKind::kSkalak ? scene.area_dilation : 1.0;
+  elasticity_ = std::make_unique<SurfaceElasticity>(law, body.mesh);
+  if (scene.E_b > 0.0) {
+    bending_ = std::make_unique<HelfrichBending>(
+        HelfrichParameters{units.bending_modulus, scene.c0 / units.radius});
+  }
+  // Explicit limit at the initial shape (membrane_stability.h): a planar membrane mode of
+  // wavenumber k relaxes at S k^(p-1) phi_hat(k h)^2 / (4 mu) in 3D as in 2D, with the in-plane
+  // stiffness S = 4 G_s (neo-Hookean, zero-thickness: tension G_s (4 e_1 + 2 e_2)) or
+  // (2 + 2C) G_s (Skalak), and S = E_B for bending (p = 4); k up to pi / (shortest edge).
+  const MeshQuality q = MeasureQuality(body.mesh);
+  const double stiffness =
+      units.tension *
+      (scene.law == SurfaceLawKind::kSkalak ? 2.0 + 2.0 * scene.area_dilation : 4.0);
+  const MembraneStabilityLimits limits =
+      EstimateMembraneStability(0.0, stiffness, bending_ ? units.bending_modulus : 0.0, 0.0,
+                                units.viscosity, 1.0, q.min_edge);
+  const double dt_stable =
+      limits.min_dt() * (scene.numerics.integrator == MarkerTimeScheme::kForwardEuler ? 2.0 : 1.0);
+  if (dt_stable < 1.0) {
+    const int need = static_cast<int>(std::ceil(scene.numerics.membrane_substeps / dt_stable));
+    const char* term =
+        limits.bending_dt == limits.min_dt() ? "bending (E_b)" : "elasticity (Ca, C)";
+    throw SceneError("scene " + scene.name + ": membrane explicit limit exceeded by the " + term +
+                     " term: stable lattice dt " + Fmt(dt_stable) + " < 1 (" +
+                     elasticity_->Describe() + ", shortest edge " + Fmt(q.min_edge) +
+                     " h); set numerics.membrane_substeps >= " + std::to_string(need) + " (now " +
+                     std::to_string(scene.numerics.membrane_substeps) + ")");
+  }
+  stability_ = "explicit limit dt <= " + Fmt(dt_stable);
+}
+
+std::string MembraneStage3D::Describe() const {
+  if (!elasticity_) {
+    return "drop: surface tension gamma = " + Fmt(tension_) +
+           ", force gamma (Delta x)_i A_i (cotangent mean-curvature normal); " + stability_ +
+           "\nmesh: " + MeasureQuality(body_.mesh).Describe();
+  }
+  std::string d = elasticity_->Describe();
+  if (bending_) d += ", " + bending_->Describe();
+  return d + "; " + stability_ + "\nmesh: " + MeasureQuality(body_.mesh).Describe();
+}
+
+void MembraneStage3D::Run(long step) {
+  if (!elasticity_) {
+    const SurfaceGeometry g = MeasureSurface(body_.mesh);
+    for (int v = 0; v < body_.mesh.vertex_count(); ++v) {
+      body_.force.col(v) = tension_ * g.vertex_area[v] * g.laplace_position.col(v);
+    }
+    return;
+  }
+  try {
+    elasticity_->ComputeForces(body_.mesh.vertices(), body_.elastic_force);
+  } catch (const std::exception& e) {
+    FailStep(step, std::string("membrane: ") + e.what());
+  }
+  body_.force = body_.elastic_force;
+  if (bending_) {
+    bending_->ComputeForces(body_.mesh, body_.bending_force);
+    body_.force += body_.bending_force;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+SpreadStage3D::SpreadStage3D(const ImmersedBoundary3D& ib, MembraneSurface3D& body,
+                             LatticeBoltzmann3D& fluid)
+    : ib_(ib), body_(body), fluid_(fluid) {}
+
+std::string SpreadStage3D::Describe() const {
+  return "cosine delta (eq. 103) as a product in 3D, spread the vertex forces";
+}
+
+void SpreadStage3D::Run(long) {
+  fluid_.ClearForce();
+  ib_.Spread(body_.mesh.vertices(), body_.force,
+             {&fluid_.force(0), &fluid_.force(1), &fluid_.force(2)});
+}
+
+// ---------------------------------------------------------------------------------------------
+
+FluidStage3D::FluidStage3D(const Scene& scene, const LatticeUnits& units, MembraneSurface3D& body)
+    : scene_(scene), units_(units), body_(body) {
+  LbmParameters p;
+  p.nx = p.ny = p.nz = scene.N;
+  p.viscosity = units.viscosity;
+  p.threads = scene.numerics.threads;
+  p.boundary = scene.has_shear() ? FluidBoundary::kShearWalls : FluidBoundary::kClosedBox;
+  // song2019 sec. 3.1.2: the heat fluxes (and the bulk rate) follow the shear rate, the
+  // higher-order moments relax at 1.8.
+  const double s_nu = 1.0 / (3.0 * units.viscosity + 0.5);
+  p.s_e = s_nu;
+  p.s_q = s_nu;
+  p.s_epsilon = 1.8;
+  p.s_pi = 1.8;
+  p.s_m = 1.8;
+  lattice_ = std::make_unique<LatticeBoltzmann3D>(p);
+}
+
+std::string FluidStage3D::Describe() const {
+  std::ostringstream out;
+  out << "D3Q19 MRT LBM " << scene_.N << "^3, tau = " << units_.tau
+      << " (s_e = s_q = s_nu, s_eps = s_pi = s_m = 1.8), "
+      << (scene_.has_shear() ? "moving shear walls, periodic x and z" : "closed box at rest");
+  return out.str();
+}
+
+void FluidStage3D::Reset() {
+  lattice_->ClearViscosityField();
+  if (scene_.has_shear()) {
+    lattice_->InitializeShear(body_.shear_rate);
+  } else {
+    lattice_->InitializeAtRest();
+  }
+  lattice_->ClearForce();
+}
+
+void FluidStage3D::ApplyShearRate() {
+  lattice_->SetWallVelocities(-body_.shear_rate * units_.half_width,
+                              body_.shear_rate * units_.half_width);
+}
+
+void FluidStage3D::Run(long step) {
+  lattice_->Step();
+  double max_speed2 = 0.0;
+  const double* ux = lattice_->velocity(0).data();
+  const double* uy = lattice_->velocity(1).data();
+  const double* uz = lattice_->velocity(2).data();
+  for (std::size_t i = 0; i < lattice_->nodes(); ++i) {
+    const double s2 = ux[i] * ux[i] + uy[i] * uy[i] + uz[i] * uz[i];
+    if (!(s2 <= max_speed2)) {
+      if (!std::isfinite(s2)) {
+        FailStep(step, "fluid velocity is not finite (NaN/Inf) at node " + std::to_string(i));
+      }
+      max_speed2 = s2;
+    }
+  }
+  SimulationState& state = *body_.state;
+  state.max_mach = std::sqrt(max_speed2) / kLatticeSoundSpeed;
+  if (state.max_mach > scene_.numerics.max_mach) {
+    FailStep(step, "lattice Mach number " + Fmt(state.max_mach) + " > " +
+                       Fmt(scene_.numerics.max_mach) +
+                       " (numerics.max_mach); largest membrane force per vertex " +
+                       Fmt(body_.force.colwise().norm().maxCoeff()));
+  }
+}
+
+void FluidStage3D::Save(CheckpointWriter& w) const {
+  w.Pod(lattice_->step());
+  w.Vec(lattice_->populations());
+  for (int a = 0; a < 3; ++a) w.Vec(lattice_->force(a));
+}
+
+void FluidStage3D::Restore(CheckpointReader& r) {
+  const long step = r.Pod<long>();
+  const std::vector<double> f = r.Vec();
+  for (int a = 0; a < 3; ++a) lattice_->force(a) = r.Vec();
+  lattice_->SetPopulations(f);
+  lattice_->SetStep(step);
+  if (scene_.has_shear()) ApplyShearRate();
+}
+
+// ---------------------------------------------------------------------------------------------
+
+MarkerStage3D::MarkerStage3D(const Scene& scene, const Grid3D& grid, const ImmersedBoundary3D& ib,
+                             MembraneSurface3D& body, const LatticeBoltzmann3D& fluid)
+    : scene_(scene),
+      grid_(grid),
+      ib_(ib),
+      body_(body),
+      fluid_(fluid),
+      advector_(IntegratorOf(scene)) {}
+
+std::string MarkerStage3D::Describe() const {
+  return std::string("interpolate u at the vertices, ") +
+         (advector_.scheme() == MarkerIntegrator::kAdamsBashforth2 ? "Adams-Bashforth 2"
+                                                                   : "forward Euler");
+}
+
+void MarkerStage3D::Run(long step) {
+  ib_.Interpolate({&fluid_.velocity(0), &fluid_.velocity(1), &fluid_.velocity(2)},
+                  body_.mesh.vertices(), body_.U);
+  scratch_ = body_.mesh.vertices();
+  advector_.Advance(body_.U, 1.0, scratch_);
+  if (scene_.has_shear()) WrapSurfaceIntoDomain(grid_, {true, false, true}, scratch_);
+  if (!scratch_.allFinite()) FailStep(step, "vertex position is not finite (NaN/Inf)");
+  const double margin = 2.0 * grid_.h;
+  for (int k = 0; k < scratch_.cols(); ++k) {
+    for (int a = 0; a < 3; ++a) {
+      if (a != 1 && scene_.has_shear()) continue;  // periodic axes
+      const double v = scratch_(a, k), lo = grid_.origin(a),
+                   hi = grid_.origin(a) + grid_.extent(a) * grid_.h;
+      if (v < lo + margin || v > hi - margin) {
+        FailStep(step, "vertex " + std::to_string(k) + " at " + std::string(1, "xyz"[a]) + " = " +
+                           Fmt(v) + " is within 2h of the wall " + std::string(1, "xyz"[a]) +
+                           " = " + Fmt(v < 0 ? lo : hi) + " (the membrane left the domain)");
+      }
+    }
+  }
+  body_.mesh.SetVertices(scratch_);
+}
+
+void MarkerStage3D::Save(CheckpointWriter& w) const {
+  w.Mat(advector_.previous_velocity());
+  w.Pod(static_cast<std::int32_t>(advector_.has_previous_velocity()));
+}
+
+void MarkerStage3D::Restore(CheckpointReader& r) {
+  const Eigen::Matrix3Xd previous = r.Mat<3>();
+  const bool has_previous = r.Pod<std::int32_t>() != 0;
+  if (has_previous && previous.cols() != body_.mesh.vertex_count()) {
+    r.Fail("vertex velocity count differs");
+  }
+  advector_.SetPreviousVelocity(previous, has_previous);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+DiagnosticsStage3D::DiagnosticsStage3D(const Scene& scene, const LatticeUnits& units,
+                                       MembraneSurface3D& body, const LatticeBoltzmann3D& fluid)
+    : scene_(scene), units_(units), body_(body), fluid_(fluid), tracker_(0) {}
+
+std::string DiagnosticsStage3D::Describe() const {
+  std::ostringstream out;
+  out << "D_xy and inclination of the equivalent ellipsoid in the shear plane, tank-treading "
+         "phase of vertex "
+      << body_.tracked_vertex << "; watchdogs: non-finite values, Mach > "
+      << scene_.numerics.max_mach << ", |volume drift| > " << scene_.numerics.area_drift_limit
+      << ", a vertex within 2h of a wall";
+  return out.str();
+}
+
+void DiagnosticsStage3D::MeasureInto(const ShapeDiagnostics3D& d, SimulationState& s) const {
+  s.dimension = 3;
+  s.markers = body_.mesh.vertices();
+  s.electric_force.resize(3, 0);
+  s.dxy = d.dxy;
+  s.inclination = d.inclination;
+  s.area = d.volume;
+  s.area_drift = d.volume / body_.initial_volume - 1.0;
+  s.tt_phase = tracker_.phase();
+}
+
+void DiagnosticsStage3D::Reset() {
+  // The tank-treading vertex: the one farthest along +x on the equator z = z_c.
+  const ShapeDiagnostics3D d = MeasureShape3D(body_.mesh);
+  const Eigen::Matrix3Xd& x = body_.mesh.vertices();
+  int best = 0;
+  double best_score = -1e300;
+  for (int k = 0; k < x.cols(); ++k) {
+    const double score = (x(0, k) - d.centroid.x()) - 10.0 * std::abs(x(2, k) - d.centroid.z());
+    if (score > best_score) {
+      best_score = score;
+      best = k;
+    }
+  }
+  body_.tracked_vertex = best;
+  tracker_ = TankTreadingTracker(0);
+  const Eigen::Vector3d r = x.col(best) - d.centroid;
+  tracker_.UpdateRelative(0.0, Eigen::Vector2d(r.x(), r.y()), d.inclination);
+  MeasureInto(d, *body_.state);
+  body_.state->area_drift = 0.0;
+}
+
+void DiagnosticsStage3D::Run(long step) {
+  SimulationState& s = *body_.state;
+  ShapeDiagnostics3D d;
+  try {
+    d = MeasureShape3D(body_.mesh);
+  } catch (const std::exception& e) {
+    FailStep(step, e.what());
+  }
+  const double drift = d.volume / body_.initial_volume - 1.0;
+  if (!std::isfinite(drift) || std::abs(drift) > scene_.numerics.area_drift_limit) {
+    FailStep(step, "enclosed volume drifted by " + Fmt(100.0 * drift) + "% (limit " +
+                       Fmt(100.0 * scene_.numerics.area_drift_limit) +
+                       "%, numerics.area_drift_limit); " + MeasureQuality(body_.mesh).Describe());
+  }
+  const double time = s.time + (scene_.has_shear() ? body_.shear_rate : units_.dt);
+  const Eigen::Vector3d r = body_.mesh.vertices().col(body_.tracked_vertex) - d.centroid;
+  tracker_.UpdateRelative(time, Eigen::Vector2d(r.x(), r.y()), d.inclination);
+  s.step = step;
+  s.time = time;
+  MeasureInto(d, s);
+}
+
+void DiagnosticsStage3D::Save(CheckpointWriter& w) const {
+  w.Pod(static_cast<std::int32_t>(body_.tracked_vertex));
+  w.Pod(tracker_.snapshot());
+}
+
+void DiagnosticsStage3D::Restore(CheckpointReader& r) {
+  body_.tracked_vertex = r.Pod<std::int32_t>();
+  tracker_.Restore(r.Pod<TankTreadingTracker::Snapshot>());
+  SimulationState& s = *body_.state;
+  MeasureInto(MeasureShape3D(body_.mesh), s);
+  s.max_mach = fluid_.MaxSpeed() / kLatticeSoundSpeed;
+}
+
+}  // namespace ehd

@@ -1,0 +1,176 @@
+// The 3D coupled step on a small grid (N = 24, a = 4 cells, 642 vertices): a neo-Hookean sphere
+// in shear deforms and tilts as a capsule does, keeps its volume, restarts bit for bit, resets
+// to a fresh run; 3D scene keys are validated.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "ehd_capsule/coupling/simulation.h"
+
+namespace ehd {
+namespace {
+
+const char* kTinySphere = R"(
+name: tiny_sphere
+dimension: 3
+Ca: 0.05
+Re: 0.1
+E_b: 0
+V: 1
+N: 24
+mesh_subdivisions: 3
+law: neo_hookean
+geometry: {shape: sphere, half_width: 3}
+membrane: capsule
+flow: shear
+)";
+
+TEST(Simulation3D, SphereInShearDeformsTiltsAndKeepsItsVolume) {
+  Simulation sim(ParseScene(kTinySphere));
+  EXPECT_EQ(sim.dimension(), 3);
+  EXPECT_EQ(sim.state().markers.cols(), 642);
+  EXPECT_EQ(sim.triangles().size(), 1280u);
+  EXPECT_NE(sim.Pipeline().find("D3Q19"), std::string::npos) << sim.Pipeline();
+  EXPECT_NE(sim.Pipeline().find("not built: electric"), std::string::npos);
+  while (sim.state().time < 1.5) sim.Step();
+  const SimulationState& s = sim.state();
+  EXPECT_EQ(s.dimension, 3);
+  EXPECT_GT(s.dxy, 0.08);
+  EXPECT_LT(s.dxy, 0.25);
+  EXPECT_GT(s.inclination / M_PI, 0.15);  // tilted towards the extension axis (pi/4 at t = 0)
+  EXPECT_LT(s.inclination / M_PI, 0.26);
+  EXPECT_LT(std::abs(s.area_drift), 2e-3);  // enclosed volume
+  EXPECT_LT(s.tt_phase, -0.3);              // the membrane turns clockwise (tank-treading)
+  EXPECT_THROW(sim.grid(), std::logic_error);
+  EXPECT_EQ(sim.grid3d().nz, 24);
+}
+
+// Small-deformation limit (Barthes-Biesel & Rallison 1981): D = (25/4) mu k a / E_s with the
+// surface Young modulus E_s = 3 G_s of the neo-Hookean law, i.e. D = (25/12) Ca for the
+// shear-modulus capillary number Ca = mu k a / G_s used here. On this coarse grid (a = 4 cells)
+// the immersed boundary's effective radius makes the capsule about 25 % more deformable; the
+// band below excludes the factor-3 error of mixing the two conventions.
+TEST(Simulation3D, SmallDeformationIsNearTheLinearTheory) {
+  Simulation sim(ParseScene(kTinySphere, {"Ca=0.0125"}));
+  while (sim.state().time < 2.0) sim.Step();
+  const double theory = 25.0 / 12.0 * 0.0125;
+  std::printf("Ca = 0.0125: D = %.4f, linear theory %.4f\n", sim.state().dxy, theory);
+  EXPECT_GT(sim.state().dxy, 0.8 * theory);
+  EXPECT_LT(sim.state().dxy, 1.5 * theory);
+}
+
+// A drop (surface tension gamma, Ca = mu k a / gamma, viscosity ratio 1) obeys Taylor's small-
+// deformation result D = (35/32) Ca; the same coarse-grid excess as for the capsule (the drop
+// is measured at 0.077 for 0.055 here; 0.064 at a = 8 cells, docs/validation_3d.md).
+TEST(Simulation3D, DropIsNearTaylorsSmallDeformationResult) {
+  Simulation sim(ParseScene(R"(
+name: tiny_drop3d
+dimension: 3
+Ca: 0.05
+Re: 0.1
+V: 1
+N: 24
+mesh_subdivisions: 3
+geometry: {shape: sphere, half_width: 3}
+membrane: drop
+flow: shear
+)"));
+  while (sim.state().time < 1.0) sim.Step();
+  const double taylor = 35.0 / 32.0 * 0.05;
+  EXPECT_GT(sim.state().dxy, 1.0 * taylor);
+  EXPECT_LT(sim.state().dxy, 1.6 * taylor);
+  EXPECT_GT(sim.state().inclination / M_PI, 0.2);  // Taylor: pi/4 at small Ca
+  EXPECT_LT(sim.state().inclination / M_PI, 0.26);
+}
+
+TEST(Simulation3D, CheckpointRestartAndResetAreBitForBit) {
+  const Scene scene = ParseScene(kTinySphere, {"numerics.integrator=adams_bashforth2", "E_b=0.05"});
+  const std::string path = ::testing::TempDir() + "/ehd_checkpoint_3d_test.bin";
+  Simulation a(scene);
+  for (int i = 0; i < 6; ++i) a.Step();
+  a.Save(path);
+  for (int i = 0; i < 5; ++i) a.Step();
+  Simulation b(scene);
+  b.Restore(path);
+  EXPECT_EQ(b.state().step, 6);
+  for (int i = 0; i < 5; ++i) b.Step();
+  EXPECT_TRUE((a.state().markers.array() == b.state().markers.array()).all());
+  EXPECT_EQ(a.ux(), b.ux());
+  EXPECT_EQ(a.state().tt_phase, b.state().tt_phase);
+  // A 2D checkpoint is refused by a 3D simulation and the other way round.
+  Simulation plain2d(ParseScene(R"(
+name: tiny_capsule
+Ca: 0.1
+Re: 0.1
+E_b: 0
+eta: 0
+V: 1
+N: 32
+M: 32
+geometry: {shape: circle, half_width: 4}
+membrane: capsule
+flow: shear
+)"));
+  EXPECT_THROW(plain2d.Restore(path), std::runtime_error);
+  std::remove(path.c_str());
+
+  Simulation fresh(scene);
+  for (int i = 0; i < 4; ++i) b.Step();
+  b.Reset();
+  for (int i = 0; i < 5; ++i) {
+    fresh.Step();
+    b.Step();
+  }
+  EXPECT_TRUE((fresh.state().markers.array() == b.state().markers.array()).all());
+  EXPECT_EQ(fresh.state().dxy, b.state().dxy);
+}
+
+TEST(Simulation3D, SceneKeysAreValidatedForThreeDimensions) {
+  auto refused = [](const std::vector<std::string>& overrides, const std::string& expect) {
+    try {
+      ParseScene(kTinySphere, overrides);
+      ADD_FAILURE() << "accepted " << overrides[0];
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+    }
+  };
+  refused({"M=64"}, "mesh_subdivisions");
+  refused({"V=2"}, "viscosity contrast is not built in 3D");
+  refused({"Ca_E=0.1", "sigma_r=2", "eps_r=2"}, "3D electric field is not built");
+  refused({"membrane=drop"}, "surface tension only");
+  refused({"geometry.shape=circle"}, "sphere | biconcave");
+  refused({"law=skalak"}, "'C' missing");
+  refused({"C=10"}, "only law: skalak");
+  refused({"eta=1"}, "not built in 3D yet");
+  refused({"numerics.marker_filter_every=100"}, "0 in 3D");
+  refused({"mesh_subdivisions=9"}, "out of range");
+  // 2D scenes refuse the 3D keys.
+  try {
+    ParseScene(R"(
+Ca: 0.1
+Re: 0.1
+E_b: 0
+eta: 0
+V: 1
+N: 32
+M: 32
+law: skalak
+geometry: {shape: circle, half_width: 4}
+membrane: capsule
+flow: shear
+)");
+    ADD_FAILURE() << "2D scene accepted law";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("dimension: 3"), std::string::npos) << e.what();
+  }
+  const Scene skalak = ParseScene(kTinySphere, {"law=skalak", "C=15", "geometry.shape=biconcave"});
+  EXPECT_EQ(skalak.law, SurfaceLawKind::kSkalak);
+  EXPECT_EQ(skalak.M, 642);
+  Simulation rbc(skalak);
+  EXPECT_NE(rbc.Pipeline().find("Skalak"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ehd
