@@ -99,11 +99,6 @@ int RunScene(const std::vector<std::string>& args) {
   if (steady_tol == 0.0) throw UsageError("--until-steady needs a tolerance > 0");
 
   const Scene scene = LoadScene(scene_name, overrides);
-  if (scene.dimension == 3 && !vtk_dir.empty()) {
-    throw UsageError(
-        "--vtk writes 2D frames; binary VTK for 3D scenes is not built yet "
-        "(use --csv and --checkpoint)");
-  }
   Simulation sim(scene);
   if (!quiet) {
     std::cout << DescribeScene(scene) << DescribeUnits(scene, sim.units()) << sim.Pipeline();
