@@ -1,6 +1,7 @@
 // Closed triangle meshes, their shapes and discrete differential geometry; see triangle_mesh.h.
 #include "ehd_capsule/geometry/triangle_mesh.h"
 
+#include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -268,6 +269,106 @@ std::vector<double> LaplaceBeltrami(const TriangleMesh& mesh, const std::vector<
     out[e.b] += w * (f[e.a] - f[e.b]);
   }
   for (int k = 0; k < nv; ++k) out[k] /= 2.0 * area[k];
+  return out;
+}
+
+std::vector<double> FittedCurvatures::mean_curvature() const {
+  std::vector<double> h(kappa1.size());
+  for (std::size_t i = 0; i < h.size(); ++i) h[i] = 0.5 * (kappa1[i] + kappa2[i]);
+  return h;
+}
+
+std::vector<double> FittedCurvatures::gaussian_curvature() const {
+  std::vector<double> k(kappa1.size());
+  for (std::size_t i = 0; i < k.size(); ++i) k[i] = kappa1[i] * kappa2[i];
+  return k;
+}
+
+FittedCurvatures FitCurvatures(const TriangleMesh& mesh, int rings) {
+  if (rings < 1 || rings > 4) {
+    throw std::invalid_argument("FitCurvatures: rings = " + std::to_string(rings) +
+                                " outside [1, 4]");
+  }
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  const int nv = mesh.vertex_count();
+  // Area-weighted normals as the first frame.
+  Eigen::Matrix3Xd normal = Eigen::Matrix3Xd::Zero(3, nv);
+  for (const auto& t : mesh.triangles()) {
+    const Eigen::Vector3d n =
+        (Column(x, t[1]) - Column(x, t[0])).cross(Column(x, t[2]) - Column(x, t[0]));
+    for (int c = 0; c < 3; ++c) normal.col(t[c]) += n;
+  }
+  FittedCurvatures out;
+  out.normal.resize(3, nv);
+  out.direction1.resize(3, nv);
+  out.direction2.resize(3, nv);
+  out.kappa1.resize(nv);
+  out.kappa2.resize(nv);
+  std::vector<int> mark(nv, -1), neighbours;
+  for (int v = 0; v < nv; ++v) {
+    // The vertices within `rings` edge rings (breadth first).
+    neighbours.clear();
+    mark[v] = v;
+    std::size_t begin = 0;
+    neighbours.push_back(v);
+    for (int r = 0; r < rings; ++r) {
+      const std::size_t end = neighbours.size();
+      for (std::size_t q = begin; q < end; ++q) {
+        for (int e : mesh.vertex_edges(neighbours[q])) {
+          const TriangleMesh::Edge& edge = mesh.edges()[e];
+          const int w = edge.a == neighbours[q] ? edge.b : edge.a;
+          if (mark[w] != v) {
+            mark[w] = v;
+            neighbours.push_back(w);
+          }
+        }
+      }
+      begin = end;
+    }
+    const Eigen::Vector3d n = normal.col(v).normalized();
+    Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    const Eigen::Vector3d p = x.col(v);
+    const int m = static_cast<int>(neighbours.size()) - 1;
+    if (m < 5) {
+      throw std::runtime_error("FitCurvatures: vertex " + std::to_string(v) + " has " +
+                               std::to_string(m) + " neighbours within " + std::to_string(rings) +
+                               " rings (5 needed)");
+    }
+    Eigen::MatrixXd a(m, 5);
+    Eigen::VectorXd b(m);
+    for (int j = 0; j < m; ++j) {
+      const Eigen::Vector3d d = x.col(neighbours[j + 1]) - p;
+      const double u = d.dot(t1), w = d.dot(t2), h = d.dot(n);
+      const double weight = 1.0 / d.squaredNorm();
+      a.row(j) << u, w, u * u, u * w, w * w;
+      a.row(j) *= weight;
+      b(j) = h * weight;
+    }
+    const Eigen::VectorXd c = a.colPivHouseholderQr().solve(b);
+    // Graph z = f(u, w): I = [[1 + fu^2, fu fw], [fu fw, 1 + fw^2]], II = Hess / sqrt(1 + |g|^2)
+    // with the normal (-fu, -fw, 1)/sqrt(...) along +n. The outward normal sees a sphere as
+    // z = -(u^2 + w^2)/(2R): the principal curvatures (positive there) are those of -II.
+    const double fu = c(0), fw = c(1);
+    Eigen::Matrix2d first, second;
+    first << 1 + fu * fu, fu * fw, fu * fw, 1 + fw * fw;
+    const double root = std::sqrt(1 + fu * fu + fw * fw);
+    second << 2 * c(2), c(3), c(3), 2 * c(4);
+    second /= root;
+    // S = -I^-1 II is self-adjoint in the metric I: the generalized symmetric eigenproblem
+    // (-II) v = kappa I v gives its eigenvalues and eigenvectors.
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> eig(-second, first);
+    const Eigen::Vector2d kappa = eig.eigenvalues();  // ascending
+    const Eigen::Vector3d corrected = ((-fu) * t1 + (-fw) * t2 + n).normalized();
+    out.normal.col(v) = corrected;
+    out.kappa1[v] = kappa(1);
+    out.kappa2[v] = kappa(0);
+    // Principal directions: tangent vectors (du, dw) -> du (t1 + fu n) + dw (t2 + fw n).
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Vector2d dv = eig.eigenvectors().col(1 - k);
+      const Eigen::Vector3d dir = (dv(0) * (t1 + fu * n) + dv(1) * (t2 + fw * n)).normalized();
+      (k == 0 ? out.direction1 : out.direction2).col(v) = dir;
+    }
+  }
   return out;
 }
 

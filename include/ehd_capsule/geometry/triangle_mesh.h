@@ -104,6 +104,24 @@ SurfaceGeometry MeasureSurface(const TriangleMesh& mesh);
 std::vector<double> LaplaceBeltrami(const TriangleMesh& mesh, const std::vector<double>& area,
                                     const std::vector<double>& f);
 
+// Pointwise curvatures by a local fit (for what needs them vertex by vertex: the 3D immersed
+// interface corrections). At each vertex, in the frame of its area-weighted normal, the height
+// z = c_1 x + c_2 y + c_3 x^2 + c_4 x y + c_5 y^2 of the vertices within `rings` edge rings is
+// fitted by least squares through the vertex (weights 1/|x_j - x_i|^2); from the fitted graph
+// (gradient g = (c_1, c_2), Hessian [[2 c_3, c_4], [c_4, 2 c_5]]) the first and second
+// fundamental forms give the shape operator, whose eigenvalues are the principal curvatures
+// (sign: positive on a sphere with the outward normal, as H above), the tilt g corrects the
+// normal, and its eigenvectors are the principal directions. Converges pointwise (the cotangent
+// H and the angle-deficit K do not on irregular meshes; docs/geometry_3d.md).
+struct FittedCurvatures {
+  Eigen::Matrix3Xd normal;                     // corrected unit outward normals
+  std::vector<double> kappa1, kappa2;          // principal curvatures, kappa1 >= kappa2
+  Eigen::Matrix3Xd direction1, direction2;     // principal directions (unit, tangent)
+  std::vector<double> mean_curvature() const;  // (kappa1 + kappa2) / 2
+  std::vector<double> gaussian_curvature() const;
+};
+FittedCurvatures FitCurvatures(const TriangleMesh& mesh, int rings = 1);
+
 // Mesh quality: edge lengths, triangle angles, the largest aspect ratio circumradius /
 // (2 inradius) (1 for an equilateral triangle) and the vertex valences.
 struct MeshQuality {
