@@ -190,6 +190,18 @@ int RunScene(const std::vector<std::string>& args) {
   const long taken = sim.state().step - first_step;
   std::printf("%ld steps in %.2f s (%.3g ms/step)\n", taken, wall,
               taken > 0 ? 1e3 * wall / taken : 0.0);
+  if (!quiet && taken > 0) {
+    // Where the time went, stage by stage (wall time of each stage's part of the step).
+    double total = 0.0;
+    for (const auto& t : sim.StageTimes()) total += t.seconds;
+    if (total > 0.0) {
+      std::printf("time per stage:");
+      for (const auto& t : sim.StageTimes()) {
+        std::printf(" %s %.1f%%", t.name.c_str(), 100.0 * t.seconds / total);
+      }
+      std::printf("\n");
+    }
+  }
   if (steady_tol > 0) {
     if (steady) {
       std::printf(

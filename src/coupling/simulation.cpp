@@ -8,6 +8,7 @@
 // between.
 #include "ehd_capsule/coupling/simulation.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -44,6 +45,7 @@ struct Simulation::Impl {
   std::unique_ptr<DiagnosticsStage3D> diagnostics3;
 
   std::vector<StepStage*> stages;
+  std::vector<double> stage_seconds;   // aligned with stages
   std::vector<std::string> not_built;  // "electric (why)", for the pipeline text
   double pending_ca = -1.0, pending_ca_e = -1.0;
   std::vector<double> empty;
@@ -290,8 +292,26 @@ void Simulation::Step() {
     m.pending_ca_e = -1.0;
   }
   const long step = state_.step + 1;
-  for (StepStage* stage : m.stages) stage->Run(step);
+  if (m.stage_seconds.size() != m.stages.size()) m.stage_seconds.assign(m.stages.size(), 0.0);
+  auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < m.stages.size(); ++i) {
+    m.stages[i]->Run(step);
+    const auto t1 = std::chrono::steady_clock::now();
+    m.stage_seconds[i] += std::chrono::duration<double>(t1 - t0).count();
+    t0 = t1;
+  }
 }
+
+std::vector<Simulation::StageTime> Simulation::StageTimes() const {
+  const Impl& m = *impl_;
+  std::vector<StageTime> out;
+  for (std::size_t i = 0; i < m.stages.size(); ++i) {
+    out.push_back({m.stages[i]->name(), i < m.stage_seconds.size() ? m.stage_seconds[i] : 0.0});
+  }
+  return out;
+}
+
+void Simulation::ResetStageTimes() { impl_->stage_seconds.assign(impl_->stages.size(), 0.0); }
 
 std::string Simulation::Pipeline() const {
   const Impl& m = *impl_;
