@@ -6,12 +6,14 @@
 //          216 B for a bare kernel; this one also reads the force (2 x 8 B) and writes rho, ux, uy
 //          (3 x 8 B + 3 x 8 B write-allocate): 280 B per update (+8 B with a viscosity field).
 //   D3Q19: 19 reads + 19 writes + 19 write-allocate (456 B), force 3 x 8 B, rho and u 4 x 8 B
-//          + write-allocate 4 x 8 B: 544 B per update (+8 B with a viscosity field).
+//          + write-allocate 4 x 8 B: 544 B per update (+8 B with a viscosity field); in place
+//          (the AA pattern, --pattern inplace, the default) the writes go to lines just read, so
+//          no write-allocate: 304 + 24 + 64 = 392 B.
 // The bound is bandwidth / (B per update). Sizes are N^2 (D2Q9) or N^3 (D3Q19) nodes.
 //
 // usage: lbm_bench [--lattice d2q9|d3q19] [--sizes 256,321,512,1024,1281] [--threads 1,2]
 //                  [--seconds 0.5] [--repeats 3] [--forcing split|guo] [--viscosity-field]
-//                  [--stores auto|cached|streaming]
+//                  [--stores auto|cached|streaming] [--pattern auto|two|inplace]
 #include <omp.h>
 
 #include <algorithm>
@@ -68,6 +70,7 @@ struct BenchOptions {
   ehd::ForcingScheme forcing = ehd::ForcingScheme::kSplitMomentum;
   bool viscosity_field = false;
   ehd::PopulationStores stores = ehd::PopulationStores::kAuto;
+  ehd::StreamingPattern pattern = ehd::StreamingPattern::kAuto;
 };
 
 // Best wall-clock MLUPS and CPU-time MLUPS of `lb` over o.repeats runs of about o.seconds.
@@ -152,6 +155,17 @@ int main(int argc, char** argv) {
         } else {
           throw std::invalid_argument("--stores auto|cached|streaming");
         }
+      } else if (arg == "--pattern") {
+        const std::string v = value();
+        if (v == "auto") {
+          o.pattern = ehd::StreamingPattern::kAuto;
+        } else if (v == "two") {
+          o.pattern = ehd::StreamingPattern::kTwoLattice;
+        } else if (v == "inplace") {
+          o.pattern = ehd::StreamingPattern::kInPlace;
+        } else {
+          throw std::invalid_argument("--pattern auto|two|inplace");
+        }
       } else if (arg == "--viscosity-field") {
         o.viscosity_field = true;
       } else {
@@ -168,9 +182,12 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (d3q19 && !sizes_given) sizes = {64, 100, 128};
-  const double bytes_per_update = (d3q19 ? 544.0 : 280.0) + (o.viscosity_field ? 8.0 : 0.0);
-  std::printf("%s MRT stream-collide, shear walls, forcing %s%s, best of %d runs of >= %.2f s\n",
-              d3q19 ? "D3Q19" : "D2Q9", o.forcing == ehd::ForcingScheme::kGuo ? "guo" : "split",
+  const bool in_place = d3q19 && o.pattern != ehd::StreamingPattern::kTwoLattice;
+  const double bytes_per_update =
+      (d3q19 ? (in_place ? 392.0 : 544.0) : 280.0) + (o.viscosity_field ? 8.0 : 0.0);
+  std::printf("%s MRT stream-collide%s, shear walls, forcing %s%s, best of %d runs of >= %.2f s\n",
+              d3q19 ? "D3Q19" : "D2Q9", in_place ? " (in place)" : "",
+              o.forcing == ehd::ForcingScheme::kGuo ? "guo" : "split",
               o.viscosity_field ? ", viscosity field" : "", o.repeats, o.seconds);
   for (int t : thread_counts) {
     const double bw = TriadBandwidthGBs(t);
@@ -189,6 +206,7 @@ int main(int argc, char** argv) {
       p.forcing = o.forcing;
       p.threads = t;
       p.stores = o.stores;
+      p.pattern = o.pattern;
       if (d3q19) {
         ehd::LatticeBoltzmann3D lb(p);
         Measure(lb, n, t, bytes_per_update, o);

@@ -94,9 +94,15 @@ LatticeBoltzmann<L>::LatticeBoltzmann(const LbmParameters& p) : params_(p) {
           "LbmParameters.s_pi / s_m set for a D2Q9 lattice, which has no pi or m moments "
           "(D3Q19 only)");
     }
+    if (p.pattern == StreamingPattern::kInPlace) {
+      throw std::invalid_argument(
+          "LbmParameters.pattern = kInPlace is built for D3Q19 only so far (D2Q9 streams with two "
+          "arrays)");
+    }
   } else {
     CheckRate("s_pi", p.s_pi);
     CheckRate("s_m", p.s_m);
+    in_place_ = p.pattern != StreamingPattern::kTwoLattice;
     if (p.stores == PopulationStores::kStreaming) {
       throw std::invalid_argument(
           "LbmParameters.stores = kStreaming is implemented for D2Q9 only (D3Q19 writes through "
@@ -117,7 +123,7 @@ LatticeBoltzmann<L>::LatticeBoltzmann(const LbmParameters& p) : params_(p) {
   n_ = static_cast<std::size_t>(p.nx) * static_cast<std::size_t>(p.ny) *
        static_cast<std::size_t>(p.nz);
   buffers_[0].assign(L::kQ * n_, 0.0);
-  buffers_[1].assign(L::kQ * n_, 0.0);
+  if (!in_place_) buffers_[1].assign(L::kQ * n_, 0.0);
   for (auto& f : force_) f.assign(n_, 0.0);
   rho_.assign(n_, 1.0);
   for (auto& u : u_) u.assign(n_, 0.0);
@@ -231,7 +237,63 @@ void LatticeBoltzmann<L>::InitializeState(const std::vector<double>& rho, const 
     }
   }
   CollideInPlaceWithoutForce();
+  if (in_place_) StoreCanonicalInPlace();
   step_ = 0;
+}
+
+template <class L>
+void LatticeBoltzmann<L>::StoreCanonicalInPlace() {
+  // Slot opp(i) of each node takes f*_i: swap the pairs (i, opp(i)).
+  std::vector<double>& f = current();
+  for (int q = 0; q < L::kQ; ++q) {
+    const int o = L::kOpposite[q];
+    if (o <= q) continue;
+    for (std::size_t node = 0; node < n_; ++node) std::swap(f[q * n_ + node], f[o * n_ + node]);
+  }
+  next_odd_ = true;
+}
+
+template <class L>
+const std::vector<double>& LatticeBoltzmann<L>::populations() const {
+  if (!in_place_) return current();
+  const std::vector<double>& f = current();
+  canonical_.resize(f.size());
+  if (next_odd_) {
+    // After an even step (or a start): f*_i(x) is in slot opp(i) of x.
+    for (int q = 0; q < L::kQ; ++q) {
+      const std::size_t from = static_cast<std::size_t>(L::kOpposite[q]) * n_;
+      std::copy(f.begin() + from, f.begin() + from + n_, canonical_.begin() + q * n_);
+    }
+    return canonical_;
+  }
+  // After an odd step: f*_i(x) is in slot i of x + c_i, or in slot opp(i) of x where x + c_i
+  // lies beyond a wall.
+  const int extent[3] = {params_.nx, params_.ny, params_.nz};
+  const std::size_t stride[3] = {1, static_cast<std::size_t>(params_.nx),
+                                 static_cast<std::size_t>(params_.nx) * params_.ny};
+  for (std::size_t node = 0; node < n_; ++node) {
+    const int coord[3] = {static_cast<int>(node % extent[0]),
+                          static_cast<int>((node / stride[1]) % extent[1]),
+                          static_cast<int>(node / stride[2])};
+    for (int q = 0; q < L::kQ; ++q) {
+      std::size_t to = 0;
+      bool wall = false;
+      for (int a = 0; a < L::kDimension && !wall; ++a) {
+        int c = coord[a] + L::kC[q][a];
+        if (c < 0 || c >= extent[a]) {
+          if (!periodic(a)) {
+            wall = true;
+            break;
+          }
+          c = (c + extent[a]) % extent[a];
+        }
+        to += static_cast<std::size_t>(c) * stride[a];
+      }
+      canonical_[q * n_ + node] =
+          wall ? f[static_cast<std::size_t>(L::kOpposite[q]) * n_ + node] : f[q * n_ + to];
+    }
+  }
+  return canonical_;
 }
 
 template <class L>
@@ -301,7 +363,11 @@ void LatticeBoltzmann<L>::SetWallVelocities(double bottom, double top) {
 template <class L>
 void LatticeBoltzmann<L>::Step() {
   StreamCollide();
-  current_index_ = 1 - current_index_;
+  if (in_place_) {
+    next_odd_ = !next_odd_;
+  } else {
+    current_index_ = 1 - current_index_;
+  }
   ++step_;
 }
 
@@ -309,7 +375,7 @@ template <class L>
 void LatticeBoltzmann<L>::StreamCollide() {
   lbm_kernels::StreamCollideArgs a;
   a.src = current().data();
-  a.dst = next().data();
+  a.dst = in_place_ ? current().data() : next().data();
   a.nx = params_.nx;
   a.ny = params_.ny;
   a.nz = params_.nz;
@@ -344,6 +410,8 @@ void LatticeBoltzmann<L>::StreamCollide() {
       a.scratch = stream_scratch_.data() + ((64 - base % 64) % 64) / sizeof(double);
     }
     lbm_kernels::StreamCollideD2Q9(a);
+  } else if (in_place_) {
+    lbm_kernels::StreamCollideD3Q19InPlace(a, next_odd_);
   } else {
     lbm_kernels::StreamCollideD3Q19(a);
   }
@@ -378,6 +446,7 @@ void LatticeBoltzmann<L>::SetPopulations(const std::vector<double>& f) {
     throw std::invalid_argument(m.str());
   }
   current() = f;
+  if (in_place_) StoreCanonicalInPlace();
   for (std::size_t node = 0; node < n_; ++node) {
     double r = 0.0, j[D] = {};
     for (int q = 0; q < Q; ++q) {

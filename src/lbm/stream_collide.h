@@ -35,8 +35,10 @@ void StreamCollideD2Q9(const StreamCollideArgs& a);
 void CollideNodeD2Q9(double* f, const double* force, double s_nu, const MrtRates& rates,
                      ForcingScheme forcing, double& rho, double* u);
 
-// D3Q19 (stream_collide_d3q19.cpp).
+// D3Q19 (stream_collide_d3q19.cpp): two lattices (src -> dst), or in place on one array (dst;
+// the AA pattern: `odd` alternates, see the kernel).
 void StreamCollideD3Q19(const StreamCollideArgs& a);
+void StreamCollideD3Q19InPlace(const StreamCollideArgs& a, bool odd);
 void CollideNodeD3Q19(double* f, const double* force, double s_nu, const MrtRates& rates,
                       ForcingScheme forcing, double& rho, double* u);
 

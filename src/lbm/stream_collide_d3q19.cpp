@@ -19,6 +19,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <utility>
 
@@ -132,6 +133,12 @@ __attribute__((always_inline)) inline void CollideD3Q19(double* f, double fx, do
   uz_out = uz;
 }
 
+// The half-way bounce-back population of a wall moving at u_w along x: f*_opp(q) + 6 w_q c_qx
+// u_w, as one explicit fused multiply-add so both kernels round it the same way.
+inline double BounceBack(double reflected, int q, double wall_u) {
+  return std::fma(6.0 * L::kWeight[q] * L::kC[q][0], wall_u, reflected);
+}
+
 template <ForcingScheme kForcing, bool kVariableViscosity>
 void StreamCollideRows(const lbm_kernels::StreamCollideArgs& a) {
   const int nx = a.nx, ny = a.ny, nz = a.nz;
@@ -150,7 +157,7 @@ void StreamCollideRows(const lbm_kernels::StreamCollideArgs& a) {
           sj = wrap(sj, ny);
         } else {
           const double wall_u = sj < 0 ? a.wall_u_bottom : a.wall_u_top;
-          f[q] = a.src[L::kOpposite[q] * n + node] + 6.0 * L::kWeight[q] * L::kC[q][0] * wall_u;
+          f[q] = BounceBack(a.src[L::kOpposite[q] * n + node], q, wall_u);
           continue;
         }
       }
@@ -232,6 +239,149 @@ void StreamCollideRows(const lbm_kernels::StreamCollideArgs& a) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// In-place streaming on one population array (the AA pattern, Bailey et al. 2009). Two kinds of
+// step alternate:
+//   even: node x reads f_i(x) from its own slot i, collides and writes f*_i(x) into its own slot
+//         opp(i) (no streaming);
+//   odd:  node x reads f_i(x) = f*_i(x - c_i) from slot opp(i) of node x - c_i, collides, and
+//         writes f*_i(x) into slot i of node x + c_i.
+// Every location is read and written by one node only in either step, so the update is race-free
+// in place. Half-way bounce-back: a link whose source lies beyond a wall reads f*_opp(i) of its
+// own node (slot i of x after an even step, slot i of x written by the odd step) plus the moving
+// wall's 6 w_i c_i.u_w, added when it is read (so the stored values stay the exact f* and the
+// canonical post-collision state is recovered exactly); a link leaving through a wall in an odd
+// step writes f*_i(x) into slot opp(i) of x. The arithmetic is that of the two-lattice kernel,
+// so both give identical results (a test).
+template <ForcingScheme kForcing, bool kVariableViscosity, bool kOdd>
+void InPlaceRows(const lbm_kernels::StreamCollideArgs& a) {
+  const int nx = a.nx, ny = a.ny, nz = a.nz;
+  const std::size_t n = a.n;
+  const std::size_t plane = static_cast<std::size_t>(nx) * ny;
+  double* const f = a.dst;  // the single array (src == dst)
+  auto wrap = [](int v, int period) { return (v % period + period) % period; };
+  auto index = [&](int i, int j, int k) {
+    return static_cast<std::size_t>(k) * plane + static_cast<std::size_t>(j) * nx + i;
+  };
+  // Where the link of direction q at node (i, j, k) comes from (sign = -1) or goes to (+1):
+  // the node index, or -1 beyond a y wall (bottom: -1, top: -2) or a side wall (-3).
+  auto neighbour = [&](int i, int j, int k, int q, int sign, long* node) {
+    int si = i + sign * L::kC[q][0], sj = j + sign * L::kC[q][1], sk = k + sign * L::kC[q][2];
+    if (sj < 0 || sj >= ny) {
+      if (!a.periodic_y) return sj < 0 ? -1 : -2;
+      sj = wrap(sj, ny);
+    }
+    if (si < 0 || si >= nx || sk < 0 || sk >= nz) {
+      if (a.side_walls) return -3;
+      si = wrap(si, nx);
+      sk = wrap(sk, nz);
+    }
+    *node = static_cast<long>(index(si, sj, sk));
+    return 0;
+  };
+
+  auto collide = [&](double* p, std::size_t node) {
+    const double s_nu = kVariableViscosity ? a.s_nu_field[node] : a.s_nu_uniform;
+    double r, ux, uy, uz;
+    CollideD3Q19<kForcing>(p, a.force[0][node], a.force[1][node], a.force[2][node], s_nu, a.rates,
+                           r, ux, uy, uz);
+    a.rho[node] = r;
+    a.u[0][node] = ux;
+    a.u[1][node] = uy;
+    a.u[2][node] = uz;
+  };
+  auto general_node = [&](int i, int j, int k) {
+    const std::size_t node = index(i, j, k);
+    double p[kQ];
+    for (int q = 0; q < kQ; ++q) {
+      long from = 0;
+      const int wall = neighbour(i, j, k, q, -1, &from);
+      if (wall != 0) {
+        // f*_opp(q)(x) + 6 w c.u_w (a resting side wall: no term).
+        p[q] = wall == -3
+                   ? f[q * n + node]
+                   : BounceBack(f[q * n + node], q, wall == -1 ? a.wall_u_bottom : a.wall_u_top);
+      } else {
+        p[q] = kOdd ? f[L::kOpposite[q] * n + static_cast<std::size_t>(from)] : f[q * n + node];
+      }
+    }
+    collide(p, node);
+    for (int q = 0; q < kQ; ++q) {
+      if (!kOdd) {
+        f[L::kOpposite[q] * n + node] = p[q];
+        continue;
+      }
+      long to = 0;
+      const int wall = neighbour(i, j, k, q, +1, &to);
+      if (wall != 0) {
+        f[L::kOpposite[q] * n + node] = p[q];  // bounces back into its own node
+      } else {
+        f[q * n + static_cast<std::size_t>(to)] = p[q];
+      }
+    }
+  };
+  const long rows = static_cast<long>(ny) * nz;
+#pragma omp parallel for schedule(static) num_threads(a.threads) if (a.threads != 1)
+  for (long row_index = 0; row_index < rows; ++row_index) {
+    const int j = static_cast<int>(row_index % ny), k = static_cast<int>(row_index / ny);
+    const bool wall_row =
+        (!a.periodic_y && (j == 0 || j == ny - 1)) || (a.side_walls && (k == 0 || k == nz - 1));
+    if (wall_row || nx < 3) {
+      for (int i = 0; i < nx; ++i) general_node(i, j, k);
+      continue;
+    }
+    general_node(0, j, k);
+    const std::size_t row = index(0, j, k);
+    // Interior i = 1..nx-2: all 19 links stay inside; row pointers for the gather and scatter.
+    double* gather[kQ];
+    double* scatter[kQ];
+    for (int q = 0; q < kQ; ++q) {
+      if (kOdd) {
+        const int sj = wrap(j - L::kC[q][1], ny), sk = wrap(k - L::kC[q][2], nz);
+        gather[q] = f + L::kOpposite[q] * n + index(0, sj, sk) - L::kC[q][0];
+        const int dj = wrap(j + L::kC[q][1], ny), dk = wrap(k + L::kC[q][2], nz);
+        scatter[q] = f + q * n + index(0, dj, dk) + L::kC[q][0];
+      } else {
+        gather[q] = f + q * n + row;
+        scatter[q] = f + L::kOpposite[q] * n + row;
+      }
+    }
+    alignas(64) double block[kQ][kChunk];
+    alignas(64) double out_rho[kChunk], out_u[3][kChunk];
+    for (int i0 = 1; i0 < nx - 1; i0 += kChunk) {
+      const int len = std::min(kChunk, nx - 1 - i0);
+      for (int q = 0; q < kQ; ++q) {
+        const double* __restrict src = gather[q] + i0;
+        for (int i = 0; i < len; ++i) block[q][i] = src[i];
+      }
+      const std::size_t c = row + i0;
+      const double* __restrict fx = a.force[0] + c;
+      const double* __restrict fy = a.force[1] + c;
+      const double* __restrict fz = a.force[2] + c;
+      const double* __restrict nu = kVariableViscosity ? a.s_nu_field + c : nullptr;
+      for (int i = 0; i < len; ++i) {
+        double p[kQ];
+#pragma GCC unroll 19
+        for (int q = 0; q < kQ; ++q) p[q] = block[q][i];
+        const double s_nu = kVariableViscosity ? nu[i] : a.s_nu_uniform;
+        CollideD3Q19<kForcing>(p, fx[i], fy[i], fz[i], s_nu, a.rates, out_rho[i], out_u[0][i],
+                               out_u[1][i], out_u[2][i]);
+#pragma GCC unroll 19
+        for (int q = 0; q < kQ; ++q) block[q][i] = p[q];
+      }
+      for (int q = 0; q < kQ; ++q) {
+        double* __restrict dst = scatter[q] + i0;
+        for (int i = 0; i < len; ++i) dst[i] = block[q][i];
+      }
+      for (int i = 0; i < len; ++i) a.rho[c + i] = out_rho[i];
+      for (int d = 0; d < 3; ++d) {
+        for (int i = 0; i < len; ++i) a.u[d][c + i] = out_u[d][i];
+      }
+    }
+    general_node(nx - 1, j, k);
+  }
+}
+
 }  // namespace
 
 namespace lbm_kernels {
@@ -247,6 +397,30 @@ void StreamCollideD3Q19(const StreamCollideArgs& a) {
     StreamCollideRows<ForcingScheme::kSplitMomentum, true>(a);
   } else {
     StreamCollideRows<ForcingScheme::kSplitMomentum, false>(a);
+  }
+}
+
+void StreamCollideD3Q19InPlace(const StreamCollideArgs& a, bool odd) {
+  const bool guo = a.forcing == ForcingScheme::kGuo;
+  const bool variable = a.s_nu_field != nullptr;
+  if (odd) {
+    if (guo && variable) {
+      InPlaceRows<ForcingScheme::kGuo, true, true>(a);
+    } else if (guo) {
+      InPlaceRows<ForcingScheme::kGuo, false, true>(a);
+    } else if (variable) {
+      InPlaceRows<ForcingScheme::kSplitMomentum, true, true>(a);
+    } else {
+      InPlaceRows<ForcingScheme::kSplitMomentum, false, true>(a);
+    }
+  } else if (guo && variable) {
+    InPlaceRows<ForcingScheme::kGuo, true, false>(a);
+  } else if (guo) {
+    InPlaceRows<ForcingScheme::kGuo, false, false>(a);
+  } else if (variable) {
+    InPlaceRows<ForcingScheme::kSplitMomentum, true, false>(a);
+  } else {
+    InPlaceRows<ForcingScheme::kSplitMomentum, false, false>(a);
   }
 }
 

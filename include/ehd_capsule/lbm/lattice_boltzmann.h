@@ -38,6 +38,11 @@ enum class FluidBoundary { kPeriodic, kShearWalls, kClosedBox };
 // D2Q9 only (D3Q19 writes through the cache).
 enum class PopulationStores { kAuto, kCached, kStreaming };
 
+// How the populations stream: two arrays (read one, write the other), or in place on one array
+// (the AA pattern: half the memory and traffic; D3Q19 only so far). kAuto: in place for D3Q19,
+// two arrays for D2Q9. Results are identical either way.
+enum class StreamingPattern { kAuto, kTwoLattice, kInPlace };
+
 struct LbmParameters {
   int nx = 0, ny = 0;
   int nz = 1;                    // D3Q19 only (D2Q9 requires 1)
@@ -53,7 +58,8 @@ struct LbmParameters {
   double s_m = 1.8;         // D3Q19 only: m_x, m_y, m_z (reference sec. 3.1.2: 1.8)
   ForcingScheme forcing = ForcingScheme::kSplitMomentum;  // reference eqs. (107)-(108)
   int threads = 0;  // 0: OpenMP default; capped so that each thread gets >= 8192 nodes
-  PopulationStores stores = PopulationStores::kAuto;  // a speed choice; results identical
+  PopulationStores stores = PopulationStores::kAuto;   // a speed choice; results identical
+  StreamingPattern pattern = StreamingPattern::kAuto;  // a speed choice; results identical
 };
 
 template <class L>
@@ -116,7 +122,8 @@ class LatticeBoltzmann {
   // (q = velocity index of the descriptor, node = grid index). SetPopulations recomputes rho and
   // u = j* - F/2 (j* = j + F of the stored f*) with the current force arrays; Step continues
   // bit-for-bit. SetStep restores the step counter.
-  const std::vector<double>& populations() const { return current(); }
+  const std::vector<double>& populations() const;
+  bool in_place() const { return in_place_; }
   void SetPopulations(const std::vector<double>& f);
   void SetStep(long step) { step_ = step; }
   long step() const { return step_; }
@@ -129,6 +136,9 @@ class LatticeBoltzmann {
   void CheckNodeField(const std::vector<double>& v, const char* name) const;
   void CollideInPlaceWithoutForce();
   void StreamCollide();  // the lattice's own kernel
+  // In-place streaming: the stored layout after an even step (each node's f*_i in its slot
+  // opp(i)) from canonical post-collision populations in current(), and back.
+  void StoreCanonicalInPlace();
 
   LbmParameters params_;
   std::size_t n_ = 0;
@@ -146,6 +156,9 @@ class LatticeBoltzmann {
   std::array<std::vector<double>, L::kDimension> u_;
   std::vector<double> stream_scratch_;  // per-thread blocks for streaming stores (made once)
   long step_ = 0;
+  bool in_place_ = false;
+  bool next_odd_ = true;  // in place: the next step is an odd one (the last was even, or a start)
+  mutable std::vector<double> canonical_;  // in place: populations() reconstructed on demand
 };
 
 extern template class LatticeBoltzmann<D2Q9>;
