@@ -3,8 +3,10 @@
 #include <geometry_msgs/PolygonStamped.h>
 #include <rosgraph_msgs/Clock.h>
 #include <std_msgs/String.h>
+#include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <boost/make_shared.hpp>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -20,9 +22,14 @@ CapsuleNode::CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), pnh_(private_nh) {
   ReadParameters();
   BuildSimulation();
+  field_layer_ = ParseFieldLayer(field_layer_name_, *sim_);
+  if (field_stride_ == 0) field_stride_ = std::max(1, sim_->scene().N / 64);
 
   state_pub_ = pnh_.advertise<ehd_capsule::CapsuleState>("state", 1000);
   throttled_pub_ = pnh_.advertise<ehd_capsule::CapsuleState>("state_throttled", 10);
+  field_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("field", 2);
+  tf_static_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf_static", 1, /*latch=*/true);
+  PublishStaticTransform();
   shape_pub_ = pnh_.advertise<geometry_msgs::PolygonStamped>("shape", 10);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 10);
   scene_pub_ = pnh_.advertise<std_msgs::String>("scene", 1, /*latch=*/true);
@@ -103,6 +110,17 @@ void CapsuleNode::ReadParameters() {
   pnh_.param("velocity_arrows", velocity_arrows_, false);
   pnh_.param("velocity_stride", velocity_stride_, 8);
   if (velocity_stride_ < 1) throw std::invalid_argument("~velocity_stride must be >= 1");
+  pnh_.param<std::string>("world_frame", world_frame_, "world");
+  if (world_frame_.empty() || world_frame_ == frame_id_) {
+    throw std::invalid_argument("~world_frame ('" + world_frame_ +
+                                "') must be a frame name other than ~frame_id");
+  }
+  pnh_.param<std::string>("field_layer", field_layer_name_, "speed");
+  pnh_.param("field_stride", field_stride_, 0);
+  if (field_stride_ < 0) throw std::invalid_argument("~field_stride must be >= 0 (0: automatic)");
+  pnh_.param("field_rate", field_rate_, 2.0);
+  if (!(field_rate_ > 0.0))
+    throw std::invalid_argument("~field_rate must be > 0 (Hz of wall time)");
   pnh_.param("max_step_rate", max_step_rate_, 0.0);
   pnh_.param("record", record_, false);
   pnh_.param<std::string>("bag", bag_path_, "ehd_capsule.bag");
@@ -209,6 +227,22 @@ void CapsuleNode::OpenBag() {
   bag_open_ = true;
   ROS_INFO("ehd_capsule: recording to %s (as %s until closed)", bag_path_.c_str(),
            ActiveBagPath().c_str());
+  // The frame's static transform, as a latched connection so `rosbag play` latches it again and
+  // rviz has the frame on replay.
+  geometry_msgs::TransformStamped t;
+  t.header.frame_id = world_frame_;
+  t.child_frame_id = frame_id_;
+  t.transform.rotation.w = 1.0;
+  tf2_msgs::TFMessage message;
+  message.transforms.push_back(t);
+  auto header = boost::make_shared<ros::M_string>();
+  (*header)["callerid"] = ros::this_node::getName();
+  (*header)["latching"] = "1";
+  (*header)["topic"] = "/tf_static";
+  (*header)["md5sum"] = ros::message_traits::MD5Sum<tf2_msgs::TFMessage>::value();
+  (*header)["type"] = ros::message_traits::DataType<tf2_msgs::TFMessage>::value();
+  (*header)["message_definition"] = ros::message_traits::Definition<tf2_msgs::TFMessage>::value();
+  bag_.write("/tf_static", StampNow().isZero() ? ros::Time(1e-9) : StampNow(), message, header);
 }
 
 std::string CapsuleNode::ActiveBagPath() const { return bag_path_ + ".active"; }
@@ -433,6 +467,7 @@ void CapsuleNode::Fail(const std::string& reason) {
     ROS_ERROR("ehd_capsule: the node stays up for inspection; call ~reset to start over");
   }
   PublishDiagnostics(true);
+  PublishField(true);  // the layer of the state the run stopped at
   CloseBag();
 }
 
@@ -457,6 +492,33 @@ void CapsuleNode::StepOnce() {
              until_steady_, sim_->state().time, sim_->state().dxy,
              sim_->state().inclination / M_PI);
   }
+}
+
+void CapsuleNode::PublishStaticTransform() {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ros::Time(0);
+  t.header.frame_id = world_frame_;
+  t.child_frame_id = frame_id_;
+  t.transform.rotation.w = 1.0;
+  tf2_msgs::TFMessage message;
+  message.transforms.push_back(t);
+  tf_static_pub_.publish(message);
+}
+
+void CapsuleNode::PublishField(bool force) {
+  if (field_layer_ == FieldLayer::kNone) return;
+  const ros::WallTime now = ros::WallTime::now();
+  if (!force && (now - last_field_).toSec() < 1.0 / field_rate_) return;
+  if (!force && sim_->state().step == last_field_step_) return;
+  last_field_ = now;
+  last_field_step_ = sim_->state().step;
+  const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
+                                      velocity_stride_};
+  const ros::Time stamp = StampNow();
+  const visualization_msgs::MarkerArray field =
+      MakeFieldLayer(*sim_, field_layer_, field_stride_, settings, stamp);
+  field_pub_.publish(field);
+  Record("field", field, stamp);
 }
 
 void CapsuleNode::PublishThrottled() {
@@ -579,6 +641,7 @@ int CapsuleNode::Run() {
     PublishDiagnostics(false);
     if (run_state_ == RunState::kRunning) PrintProgress(false);
     PublishThrottled();
+    PublishField(false);
     if (run_state_ == RunState::kFinished) break;
     if (run_state_ == RunState::kFailed && exit_on_error_) break;
     const bool may_step = run_state_ == RunState::kRunning ||
@@ -610,6 +673,7 @@ int CapsuleNode::Run() {
         sim_->units().time_unit.c_str(), st.dxy, st.inclination / M_PI, st.area_drift, wall,
         wall > 0 ? st.step / wall : 0.0);
   }
+  if (sim_->state().step != last_field_step_) PublishField(true);  // the final state's layer
   CloseBag();
   // Exit status: 1 if the simulation stopped on an error (even when the node was shut down
   // afterwards), 0 otherwise; main() returns 1 for an invalid scene or parameter.

@@ -2,8 +2,8 @@
 """A recorded run (test/ros/bag.test) holds exactly steps/publish_every CapsuleState messages with
 consecutive published step numbers, the latched scene once, one shape and marker array per state,
 one clock tick per state (not per step: at publish_every 100 per-step clocks were 40% of a
-bag), and is closed (readable, not .active) when the node stops; scripts/plot_bag
-turns it into PNG plots."""
+bag), the frame's latched static transform, the field layer, and is closed (readable, not
+.active) when the node stops; scripts/plot_bag turns it into PNG plots."""
 import os
 import sys
 import time
@@ -38,7 +38,12 @@ class BagTest(unittest.TestCase):
         with rosbag.Bag(path) as bag:
             states = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/state"])]
             counts = {t: bag.get_message_count(t) for t in
-                      ("/ehd_capsule/shape", "/ehd_capsule/markers", "/ehd_capsule/scene", "/clock")}
+                      ("/ehd_capsule/shape", "/ehd_capsule/markers", "/ehd_capsule/scene", "/clock",
+                       "/tf_static", "/ehd_capsule/field")}
+            tf = [(m, c) for _, m, _, c in bag.read_messages(topics=["/tf_static"],
+                                                              return_connection_header=True)]
+            fields = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/field"])]
+            markers = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/markers"])]
         # scripts/plot_bag turns the same bag into the two PNG files it names.
         import subprocess
         import tempfile
@@ -59,6 +64,22 @@ class BagTest(unittest.TestCase):
         self.assertEqual(counts["/ehd_capsule/markers"], len(states))
         self.assertEqual(counts["/ehd_capsule/scene"], 1)
         self.assertEqual(counts["/clock"], len(states))
+        # The frame's static transform, latched, so a replay gives rviz the frame.
+        self.assertEqual(counts["/tf_static"], 1)
+        message, header = tf[0]
+        self.assertIn(header.get("latching"), ("1", b"1"), str(header))
+        self.assertEqual(message.transforms[0].child_frame_id, "ehd")
+        self.assertEqual(message.transforms[0].header.frame_id, "world")
+        # The field layer (flow speed by default): throttled in wall time, and the final state's.
+        self.assertGreaterEqual(counts["/ehd_capsule/field"], 1)
+        cells = [m for m in fields[-1].markers if m.ns == "field"][0]
+        self.assertEqual(len(cells.points), 32 * 32)  # N = 32: one square per cell
+        self.assertEqual(len(cells.colors), len(cells.points))
+        # Walls drawn; force arrows with heads (3 segments, 6 points per marker).
+        names = {m.ns: m for m in markers[-1].markers}
+        self.assertEqual(len(names["walls"].points), 4)
+        self.assertEqual(len(names["electric_force"].points) % 6, 0)
+        self.assertIn("\n", names["status"].text)
 
 
 if __name__ == "__main__":

@@ -27,6 +27,7 @@
 #include "ehd_capsule/SimulationConfig.h"
 #include "ehd_capsule/coupling/simulation.h"
 #include "ehd_capsule/coupling/steady_state.h"
+#include "ehd_capsule/ros/state_messages.h"
 #include "ehd_capsule/scene/scene.h"
 
 namespace ehd::ros_node {
@@ -68,6 +69,10 @@ class CapsuleNode {
   void WarnIfLarge() const;
   // The latest state on ~state_throttled, at most ~throttled_rate times per wall second.
   void PublishThrottled();
+  // The coloured grid layer (~field_layer) on ~field, at most ~field_rate times per wall second.
+  void PublishField(bool force);
+  // world_frame -> frame_id (identity) on /tf_static, latched, so rviz has the frame.
+  void PublishStaticTransform();
   void Fail(const std::string& reason);
   ros::Time StampNow() const;
   template <typename M>
@@ -104,6 +109,13 @@ class CapsuleNode {
   std::unique_ptr<SteadyStateMonitor> steady_monitor_;
   ros::WallTime last_throttled_;
   long last_throttled_step_ = -1;
+  std::string field_layer_name_ = "speed";  // ~field_layer: none, speed, potential, field
+  FieldLayer field_layer_ = FieldLayer::kSpeed;
+  int field_stride_ = 0;     // ~field_stride, cells per square (0: N / 64, at least 1)
+  double field_rate_ = 2.0;  // ~field_rate, Hz of wall time
+  std::string world_frame_;  // ~world_frame, parent of frame_id in /tf_static
+  ros::WallTime last_field_;
+  long last_field_step_ = -1;
 
   Scene scene_;
   std::unique_ptr<Simulation> sim_;
@@ -121,6 +133,8 @@ class CapsuleNode {
 
   ros::Publisher state_pub_, shape_pub_, markers_pub_, scene_pub_, clock_pub_, diag_pub_;
   ros::Publisher throttled_pub_;  // ~state_throttled
+  ros::Publisher field_pub_;      // ~field
+  ros::Publisher tf_static_pub_;  // /tf_static
   ros::ServiceServer pause_srv_, resume_srv_, reset_srv_, advance_srv_, advance_by_srv_;
   std::unique_ptr<dynamic_reconfigure::Server<ehd_capsule::SimulationConfig>> reconfigure_;
   boost::recursive_mutex reconfigure_mutex_;

@@ -31,10 +31,23 @@ ehd_capsule::CapsuleState MakeCapsuleState(const Simulation& sim,
                                            const ros::Time& stamp);
 geometry_msgs::PolygonStamped MakeShape(const Simulation& sim, const StateMessageSettings& settings,
                                         const ros::Time& stamp);
-// Membrane line strip, electric force arrows, optional velocity arrows, and a text overlay with
-// step, t, D_xy, theta, Ca and Ca_E.
+// Membrane line strip, electric force arrows (with heads), the walls, optional velocity arrows,
+// and a two-line text overlay with step, t, D_xy, theta, Ca and Ca_E.
 visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
                                                 const StateMessageSettings& settings,
                                                 const ros::Time& stamp);
+
+// The coloured grid layer under the shape: one flat square per (stride x stride) block of cells,
+// coloured by the quantity over its range in this frame (dark blue = smallest, yellow = largest;
+// the range is in the marker's text namespace "field_range"). Quantities: the flow speed |u| in
+// units of the wall speed k L (or of its largest value without shear), the electric potential,
+// or the field strength |E| = |grad phi| in units of |E_inf| (central differences).
+enum class FieldLayer { kNone, kSpeed, kPotential, kFieldStrength };
+// Parses "none" / "speed" / "potential" / "field"; throws std::invalid_argument naming
+// ~field_layer and the accepted values, or for the electric layers on a scene without a field.
+FieldLayer ParseFieldLayer(const std::string& text, const Simulation& sim);
+visualization_msgs::MarkerArray MakeFieldLayer(const Simulation& sim, FieldLayer layer, int stride,
+                                               const StateMessageSettings& settings,
+                                               const ros::Time& stamp);
 
 }  // namespace ehd::ros_node
