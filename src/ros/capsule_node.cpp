@@ -119,6 +119,10 @@ void CapsuleNode::ReadParameters() {
   pnh_.param("field_stride", field_stride_, 0);
   if (field_stride_ < 0) throw std::invalid_argument("~field_stride must be >= 0 (0: automatic)");
   pnh_.param("field_rate", field_rate_, 2.0);
+  pnh_.param("field_interval", field_interval_, 0.1);
+  if (!(field_interval_ > 0.0)) {
+    throw std::invalid_argument("~field_interval must be > 0 (units of simulation time)");
+  }
   if (!(field_rate_ > 0.0))
     throw std::invalid_argument("~field_rate must be > 0 (Hz of wall time)");
   pnh_.param("max_step_rate", max_step_rate_, 0.0);
@@ -508,10 +512,15 @@ void CapsuleNode::PublishStaticTransform() {
 void CapsuleNode::PublishField(bool force) {
   if (field_layer_ == FieldLayer::kNone) return;
   const ros::WallTime now = ros::WallTime::now();
-  if (!force && (now - last_field_).toSec() < 1.0 / field_rate_) return;
+  // At most ~field_rate per wall second for a live view, and at least every ~field_interval of
+  // simulation time, so a fast run's bag replays with the layer moving along.
+  const bool wall_due = (now - last_field_).toSec() >= 1.0 / field_rate_;
+  const bool sim_due = sim_->state().time - last_field_time_ >= field_interval_;
+  if (!force && !wall_due && !sim_due) return;
   if (!force && sim_->state().step == last_field_step_) return;
   last_field_ = now;
   last_field_step_ = sim_->state().step;
+  last_field_time_ = sim_->state().time;
   const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
                                       velocity_stride_};
   const ros::Time stamp = StampNow();

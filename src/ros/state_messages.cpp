@@ -277,6 +277,12 @@ visualization_msgs::MarkerArray MakeFieldLayer(const Simulation& sim, FieldLayer
     name = sim.units().wall_speed > 0.0 ? "|u| / kL" : "|u| (lattice)";
   } else {
     const auto& phi = sim.potential();
+    if (phi.size() != g.size()) {
+      // No potential yet (before the first solve, or Ca_E = 0): nothing to colour.
+      cells.action = visualization_msgs::Marker::DELETE;
+      array.markers.push_back(cells);
+      return array;
+    }
     if (layer == FieldLayer::kPotential) {
       q = phi;
       scale = sim.units().field * a;  // |E_inf| a

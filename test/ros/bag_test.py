@@ -70,7 +70,7 @@ class BagTest(unittest.TestCase):
         self.assertIn(header.get("latching"), ("1", b"1"), str(header))
         self.assertEqual(message.transforms[0].child_frame_id, "ehd")
         self.assertEqual(message.transforms[0].header.frame_id, "world")
-        # The field layer (flow speed by default): throttled in wall time, and the final state's.
+        # The field layer (|E| here): throttled in wall time, and the final state's.
         self.assertGreaterEqual(counts["/ehd_capsule/field"], 1)
         cells = [m for m in fields[-1].markers if m.ns == "field"][0]
         self.assertEqual(len(cells.points), 32 * 32)  # N = 32: one square per cell

@@ -113,6 +113,8 @@ class CapsuleNode {
   FieldLayer field_layer_ = FieldLayer::kSpeed;
   int field_stride_ = 0;     // ~field_stride, cells per square (0: N / 64, at least 1)
   double field_rate_ = 2.0;  // ~field_rate, Hz of wall time
+  double field_interval_ = 0.1;  // ~field_interval: at least this often in simulation time
+  double last_field_time_ = -1e300;
   std::string world_frame_;  // ~world_frame, parent of frame_id in /tf_static
   ros::WallTime last_field_;
   long last_field_step_ = -1;
