@@ -127,6 +127,31 @@ flow: shear
   EXPECT_EQ(fresh.state().dxy, b.state().dxy);
 }
 
+// The explicit step with Helfrich bending: below the estimated limit (membrane_stability.h, the
+// planar-mode estimate with S = E_B, k up to pi / shortest edge) it runs and stays bounded; above
+// it the scene is refused naming the term and the numerics.membrane_substeps that make it
+// stable, which then runs.
+TEST(Simulation3D, BendingStepLimitIsNamedAndRespected) {
+  {
+    Simulation sim(ParseScene(kTinySphere, {"E_b=5"}));  // estimated stable dt 1.24
+    for (int i = 0; i < 1000; ++i) sim.Step();
+    EXPECT_LT(sim.state().dxy, 0.05);  // stiff in bending: barely deformed
+    EXPECT_LT(std::abs(sim.state().area_drift), 1e-2);
+  }
+  try {
+    Simulation sim(ParseScene(kTinySphere, {"E_b=10"}));
+    ADD_FAILURE() << "E_b = 10 accepted at membrane_substeps 1";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bending (E_b)"), std::string::npos) << what;
+    EXPECT_NE(what.find("numerics.membrane_substeps >= 2"), std::string::npos) << what;
+  }
+  Simulation sim(ParseScene(kTinySphere, {"E_b=10", "numerics.membrane_substeps=2"}));
+  for (int i = 0; i < 1000; ++i) sim.Step();
+  EXPECT_TRUE(sim.state().markers.allFinite());
+  EXPECT_LT(sim.state().dxy, 0.05);
+}
+
 TEST(Simulation3D, SceneKeysAreValidatedForThreeDimensions) {
   auto refused = [](const std::vector<std::string>& overrides, const std::string& expect) {
     try {
