@@ -36,6 +36,7 @@
 #include "ehd_capsule/ib/immersed_boundary.h"
 #include "ehd_capsule/ib/marker_update.h"
 #include "ehd_capsule/lbm/lattice_boltzmann.h"
+#include "ehd_capsule/lbm/openmp_wait.h"
 #include "ehd_capsule/membrane/membrane_model.h"
 #include "ehd_capsule/scene/scene.h"
 #include "ehd_capsule/scene/units.h"
@@ -91,6 +92,7 @@ int StageSplit(const ehd::Scene& scene, long warmup, long steps) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ehd::RestartWithPassiveOpenMpWait(argv);  // lbm/openmp_wait.h
   std::string scene_name = "shear_field";
   std::vector<std::string> overrides;
   long steps = 2000, warmup = 500;

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "ehd_capsule/lbm/lattice_boltzmann.h"
+#include "ehd_capsule/lbm/openmp_wait.h"
 
 namespace {
 
@@ -115,6 +116,7 @@ void Measure(Lattice& lb, int n, int threads, double bytes_per_update, const Ben
 }
 
 int main(int argc, char** argv) {
+  ehd::RestartWithPassiveOpenMpWait(argv);  // lbm/openmp_wait.h
   std::vector<int> sizes = {256, 321, 512, 1024, 1281};
   bool sizes_given = false;
   std::vector<int> thread_counts = {1, 2};

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "command.h"
+#include "ehd_capsule/lbm/openmp_wait.h"
 #include "ehd_capsule/version.h"
 
 namespace ehd::cli {
@@ -74,6 +75,7 @@ void PrintUsage(std::ostream& out) {
 }  // namespace ehd::cli
 
 int main(int argc, char** argv) {
+  ehd::RestartWithPassiveOpenMpWait(argv);  // lbm/openmp_wait.h
   using namespace ehd::cli;
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {

@@ -5,9 +5,11 @@
 
 #include <csignal>
 
+#include "ehd_capsule/lbm/openmp_wait.h"
 #include "ehd_capsule/ros/capsule_node.h"
 
 int main(int argc, char** argv) {
+  ehd::RestartWithPassiveOpenMpWait(argv);  // lbm/openmp_wait.h
   // A file size limit (ulimit -f) would kill the process on the bag write that exceeds it; with
   // SIGXFSZ ignored the write fails instead and the node handles it like a full disk.
   std::signal(SIGXFSZ, SIG_IGN);
