@@ -61,6 +61,7 @@ void MembraneSurface3D::ResetTo(const Eigen::Matrix3Xd& positions) {
   bending_force.setZero(3, n);
   force.setZero(3, n);
   initial_volume = EnclosedVolume(mesh);
+  initial_area = SurfaceArea(mesh);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -330,6 +331,7 @@ void DiagnosticsStage3D::MeasureInto(const ShapeDiagnostics3D& d, SimulationStat
   s.inclination = d.inclination;
   s.area = d.volume;
   s.area_drift = d.volume / body_.initial_volume - 1.0;
+  s.surface_drift = d.area / body_.initial_area - 1.0;
   s.tt_phase = tracker_.phase();
 }
 

@@ -43,6 +43,7 @@ void DiagnosticsStage2D::MeasureInto(const ShapeDiagnostics& d, SimulationState&
   s.inclination = d.inclination;
   s.area = d.area;
   s.area_drift = RelativeAreaDrift(d.area, body_.initial_area);
+  s.surface_drift = initial_length_ > 0.0 ? d.length / initial_length_ - 1.0 : 0.0;
   s.tt_phase = tracker_.phase();
   if (electric_) {
     s.electric_force.resize(3, markers);
@@ -57,6 +58,7 @@ void DiagnosticsStage2D::MeasureInto(const ShapeDiagnostics& d, SimulationState&
 void DiagnosticsStage2D::Reset() {
   SimulationState& s = *body_.state;
   const ShapeDiagnostics d = MeasureShape(body_.curve);
+  initial_length_ = d.length;
   tracker_ = TankTreadingTracker(0);
   tracker_.UpdateRelative(0.0, body_.X.col(0) - d.centroid, d.inclination);
   MarkerArcElements(body_.curve, body_.dl);

@@ -8,7 +8,7 @@ namespace ehd {
 
 std::string TimeSeriesHeader() {
   return "step,t,dxy,inclination,area,tt_phase,area_drift,ca,ca_e,fe_x,fe_y,gmres_iterations,"
-         "max_mach";
+         "max_mach,surface_drift";
 }
 
 TimeSeriesCsv::TimeSeriesCsv(const std::string& path, const Simulation&, bool append)
@@ -29,10 +29,10 @@ void TimeSeriesCsv::Write(const Simulation& sim) {
   const double size_scale = s.dimension == 3 ? 4.0 / 3.0 * M_PI * a * a * a : M_PI * a * a;
   char line[512];
   std::snprintf(line, sizeof line,
-                "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g\n", s.step,
+                "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", s.step,
                 s.time, s.dxy, s.inclination, s.area / size_scale, s.tt_phase, s.area_drift, s.ca,
                 s.ca_e, s.electric_force_total.x() / t_scale, s.electric_force_total.y() / t_scale,
-                s.gmres_iterations, s.max_mach);
+                s.gmres_iterations, s.max_mach, s.surface_drift);
   out_ << line;
   if (!out_) throw std::runtime_error("writing the time series " + path_ + " failed");
 }

@@ -213,6 +213,7 @@ class DiagnosticsStage2D : public StepStage {
   const LatticeBoltzmann2D& fluid_;
   bool electric_;
   TankTreadingTracker tracker_;
+  double initial_length_ = 0;  // membrane length of the initial shape
 };
 
 }  // namespace ehd

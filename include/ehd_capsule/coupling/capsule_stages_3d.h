@@ -34,8 +34,9 @@ struct MembraneSurface3D {
   Eigen::Matrix3Xd U;        // velocity interpolated this step
   Eigen::Matrix3Xd elastic_force, bending_force, force;  // per vertex (forces, not densities)
   double initial_volume = 0;
-  int tracked_vertex = 0;  // the material vertex whose angle is the tank-treading phase
-  double shear_rate = 0;   // k in effect
+  double initial_area = 0;  // surface area of the initial shape
+  int tracked_vertex = 0;   // the material vertex whose angle is the tank-treading phase
+  double shear_rate = 0;    // k in effect
   SimulationState* state = nullptr;
 
   void ResetTo(const Eigen::Matrix3Xd& positions);

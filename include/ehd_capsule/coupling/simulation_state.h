@@ -20,7 +20,9 @@ struct SimulationState {
   double dxy = 0, inclination = 0;  // Taylor deformation, inclination in the shear plane
   double area = 0;                  // enclosed area (2D); 3D: the enclosed volume
   double area_drift = 0;            // area / initial area - 1
-  double tt_phase = 0;              // unwrapped angle of material point 0 about the centroid (rad)
+  // Membrane length (2D) or surface area (3D) / its initial value - 1.
+  double surface_drift = 0;
+  double tt_phase = 0;  // unwrapped angle of material point 0 about the centroid (rad)
   double ca = 0, ca_e = 0;
   int gmres_iterations = 0;
   double gmres_residual = 0;
