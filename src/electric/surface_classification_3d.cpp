@@ -1,0 +1,133 @@
+// Winding-number classification of grid nodes against a triangulated surface; see
+// surface_classification_3d.h.
+#include "ehd_capsule/electric/surface_classification_3d.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace ehd {
+namespace {
+
+// Edge function of p against the directed edge a -> b (positive on its left).
+double EdgeFunction(double ax, double ay, double bx, double by, double px, double py) {
+  return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+}
+
+// Top-left rule for a counter-clockwise triangle: a point exactly on an edge is inside only if
+// the edge is a "top" edge (horizontal, pointing left) or a "left" edge (pointing down).
+bool OwnsEdge(double ax, double ay, double bx, double by) {
+  const double dx = bx - ax, dy = by - ay;
+  return (dy == 0.0 && dx < 0.0) || dy < 0.0;
+}
+
+}  // namespace
+
+SurfaceClassification3D ClassifyNodes(const Grid3D& g, const TriangleMesh& surface) {
+  const Eigen::Matrix3Xd& x = surface.vertices();
+  const double x_lo = g.x0, x_hi = g.x0 + g.nx * g.h, y_lo = g.y0, y_hi = g.y0 + g.ny * g.h;
+  if (x.row(0).minCoeff() <= x_lo || x.row(0).maxCoeff() >= x_hi || x.row(1).minCoeff() <= y_lo ||
+      x.row(1).maxCoeff() >= y_hi) {
+    throw std::invalid_argument(
+        "ClassifyNodes: the surface must lie strictly inside the grid's box in x and y");
+  }
+  // Crossings per column: (z, sign).
+  std::vector<std::vector<std::pair<double, int>>> columns(static_cast<std::size_t>(g.nx) * g.ny);
+  for (const auto& t : surface.triangles()) {
+    double px[3], py[3], pz[3];
+    for (int c = 0; c < 3; ++c) {
+      px[c] = x(0, t[c]);
+      py[c] = x(1, t[c]);
+      pz[c] = x(2, t[c]);
+    }
+    const double area2 = EdgeFunction(px[0], py[0], px[1], py[1], px[2], py[2]);
+    if (area2 == 0.0) continue;  // vertical in projection: crosses no column interior
+    // Orient counter-clockwise in projection; sign = +1 if it was (outward normal up).
+    int order[3] = {0, 1, 2};
+    int sign = 1;
+    if (area2 < 0.0) {
+      std::swap(order[1], order[2]);
+      sign = -1;
+    }
+    const double ax = px[order[0]], ay = py[order[0]], bx = px[order[1]], by = py[order[1]],
+                 cx = px[order[2]], cy = py[order[2]];
+    const double az = pz[order[0]], bz = pz[order[1]], cz = pz[order[2]];
+    const double area = std::abs(area2);
+    const bool own_ab = OwnsEdge(ax, ay, bx, by), own_bc = OwnsEdge(bx, by, cx, cy),
+               own_ca = OwnsEdge(cx, cy, ax, ay);
+    const int i0 =
+        std::max(0, static_cast<int>(std::floor((std::min({ax, bx, cx}) - g.x0) / g.h - 0.5)));
+    const int i1 = std::min(
+        g.nx - 1, static_cast<int>(std::ceil((std::max({ax, bx, cx}) - g.x0) / g.h - 0.5)));
+    const int j0 =
+        std::max(0, static_cast<int>(std::floor((std::min({ay, by, cy}) - g.y0) / g.h - 0.5)));
+    const int j1 = std::min(
+        g.ny - 1, static_cast<int>(std::ceil((std::max({ay, by, cy}) - g.y0) / g.h - 0.5)));
+    for (int j = j0; j <= j1; ++j) {
+      const double qy = g.y(j);
+      for (int i = i0; i <= i1; ++i) {
+        const double qx = g.x(i);
+        const double w0 = EdgeFunction(bx, by, cx, cy, qx, qy);  // weight of a
+        const double w1 = EdgeFunction(cx, cy, ax, ay, qx, qy);  // weight of b
+        const double w2 = EdgeFunction(ax, ay, bx, by, qx, qy);  // weight of c
+        const bool in = (w0 > 0.0 || (w0 == 0.0 && own_bc)) &&
+                        (w1 > 0.0 || (w1 == 0.0 && own_ca)) && (w2 > 0.0 || (w2 == 0.0 && own_ab));
+        if (!in) continue;
+        const double z = (w0 * az + w1 * bz + w2 * cz) / area;
+        columns[static_cast<std::size_t>(j) * g.nx + i].emplace_back(z, sign);
+      }
+    }
+  }
+  SurfaceClassification3D out;
+  out.side.assign(g.size(), 1);
+  out.irregular.assign(g.size(), 0);
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      auto& crossings = columns[static_cast<std::size_t>(j) * g.nx + i];
+      if (crossings.empty()) continue;
+      std::sort(crossings.begin(), crossings.end());
+      int winding = 0;
+      std::size_t next = 0;
+      for (int k = 0; k < g.nz; ++k) {
+        const double z = g.z(k);
+        while (next < crossings.size() && crossings[next].first < z)
+          winding += crossings[next++].second;
+        // Outward normals: entering through a downward face (-1), leaving through an upward one.
+        if (winding < 0) {
+          out.side[g.index(i, j, k)] = -1;
+          ++out.inside_count;
+        }
+      }
+    }
+  }
+  const int n[3] = {g.nx, g.ny, g.nz};
+  for (int k = 0; k < g.nz; ++k) {
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) {
+        const std::size_t node = g.index(i, j, k);
+        const int c[3] = {i, j, k};
+        bool irregular = false;
+        for (int a = 0; a < 3 && !irregular; ++a) {
+          for (int s : {-1, 1}) {
+            int d[3] = {c[0], c[1], c[2]};
+            d[a] += s;
+            if (d[a] < 0 || d[a] >= n[a]) continue;
+            if (out.side[g.index(d[0], d[1], d[2])] != out.side[node]) {
+              irregular = true;
+              break;
+            }
+          }
+        }
+        if (irregular) {
+          out.irregular[node] = 1;
+          ++out.irregular_count;
+        }
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace ehd
