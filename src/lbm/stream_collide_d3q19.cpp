@@ -19,6 +19,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <utility>
@@ -35,33 +36,48 @@ constexpr int kQ = L::kQ;
 using Indices = std::make_index_sequence<kQ>;
 constexpr int kChunk = 32;  // nodes per interior block
 
-// m_K = sum_i M[K][i] f_i over the non-zero M[K][i].
-template <int K, std::size_t... I>
-__attribute__((always_inline)) inline double Moment(const double* f, std::index_sequence<I...>) {
-  double v = 0.0;
-  (
-      [&]() __attribute__((always_inline)) {
-        constexpr double c = L::kMomentMatrix[K][I];
-        if constexpr (c == 1.0) {
-          v += f[I];
-        } else if constexpr (c == -1.0) {
-          v -= f[I];
-        } else if constexpr (c != 0.0) {
-          v += c * f[I];
-        }
-      }(),
-      ...);
-  return v;
+// The 18 moving velocities form 9 opposite pairs (a_p, b_p = opp(a_p)). Every moment row is even
+// (M[k][a] = M[k][opp(a)]: rho, e, eps, the stresses) or odd (M[k][opp(a)] = -M[k][a]: j, q,
+// m), so with the pair sums s_p = f_a + f_b and differences d_p = f_a - f_b each moment needs
+// half the terms, and the back transform gives f_a = E + O, f_b = E - O from the even and odd
+// parts: half the arithmetic of the plain matrix products. The zero entries of M generate no
+// code (if constexpr in fold expressions).
+constexpr int kPairs = 9;
+using PairIndices = std::make_index_sequence<kPairs>;
+
+constexpr std::array<int, kPairs> PairFirsts() {
+  std::array<int, kPairs> out{};
+  int n = 0;
+  for (int i = 1; i < kQ; ++i)
+    if (i < L::kOpposite[i]) out[n++] = i;
+  return out;
+}
+constexpr std::array<int, kPairs> kPairFirst = PairFirsts();
+
+constexpr bool EvenMoment(int k) {
+  for (int i = 1; i < kQ; ++i)
+    if (L::kMomentMatrix[k][i] != L::kMomentMatrix[k][L::kOpposite[i]]) return false;
+  return true;
 }
 
-// f_I += sum_k M[k][I] / |M_k|^2 dm_k over the non-zero M[k][I] (dm indexed by moment).
-template <int I, std::size_t... K>
-__attribute__((always_inline)) inline double Back(const double* dm, std::index_sequence<K...>) {
+// m_K from the rest population f0 and the pair sums s or differences d.
+template <int K, std::size_t... P>
+__attribute__((always_inline)) inline double Moment(double f0, const double* s, const double* d,
+                                                    std::index_sequence<P...>) {
+  constexpr bool even = EvenMoment(K);
   double v = 0.0;
+  if constexpr (even && L::kMomentMatrix[K][0] != 0.0) v = L::kMomentMatrix[K][0] * f0;
   (
       [&]() __attribute__((always_inline)) {
-        constexpr double c = L::kMomentMatrix[K][I];
-        if constexpr (c != 0.0 && K != 0) v += (c / L::kMomentNorm[K]) * dm[K];  // dm_rho = 0
+        constexpr double c = L::kMomentMatrix[K][kPairFirst[P]];
+        const double x = even ? s[P] : d[P];
+        if constexpr (c == 1.0) {
+          v += x;
+        } else if constexpr (c == -1.0) {
+          v -= x;
+        } else if constexpr (c != 0.0) {
+          v += c * x;
+        }
       }(),
       ...);
   return v;
@@ -70,13 +86,43 @@ __attribute__((always_inline)) inline double Back(const double* dm, std::index_s
 template <std::size_t... K>
 __attribute__((always_inline)) inline void AllMoments(const double* f, double* m,
                                                       std::index_sequence<K...>) {
-  ((m[K] = Moment<static_cast<int>(K)>(f, Indices{})), ...);
+  double s[kPairs], d[kPairs];
+  for (int p = 0; p < kPairs; ++p) {
+    const double a = f[kPairFirst[p]], b = f[L::kOpposite[kPairFirst[p]]];
+    s[p] = a + b;
+    d[p] = a - b;
+  }
+  ((m[K] = Moment<static_cast<int>(K)>(f[0], s, d, PairIndices{})), ...);
 }
 
-template <std::size_t... I>
+// sum_k M[k][I] / |M_k|^2 dm_k over the moments of one parity (dm_rho = 0).
+template <int I, bool kEven, std::size_t... K>
+__attribute__((always_inline)) inline double BackPart(const double* dm, std::index_sequence<K...>) {
+  double v = 0.0;
+  (
+      [&]() __attribute__((always_inline)) {
+        constexpr double c = L::kMomentMatrix[K][I];
+        if constexpr (c != 0.0 && K != 0 && EvenMoment(K) == kEven) {
+          v += (c / L::kMomentNorm[K]) * dm[K];
+        }
+      }(),
+      ...);
+  return v;
+}
+
+template <std::size_t... P>
 __attribute__((always_inline)) inline void AddBack(double* f, const double* dm,
-                                                   std::index_sequence<I...>) {
-  ((f[I] += Back<static_cast<int>(I)>(dm, Indices{})), ...);
+                                                   std::index_sequence<P...>) {
+  f[0] += BackPart<0, true>(dm, Indices{});
+  (
+      [&]() __attribute__((always_inline)) {
+        constexpr int a = kPairFirst[P];
+        const double even = BackPart<a, true>(dm, Indices{});
+        const double odd = BackPart<a, false>(dm, Indices{});
+        f[a] += even + odd;
+        f[L::kOpposite[a]] += even - odd;
+      }(),
+      ...);
 }
 
 template <ForcingScheme kForcing>
@@ -126,7 +172,7 @@ __attribute__((always_inline)) inline void CollideD3Q19(double* f, double fx, do
       dm[k] += (1.0 - 0.5 * MrtRate(L::kRateGroup[k], s_nu, r)) * s[k];
     }
   }
-  AddBack(f, dm, Indices{});
+  AddBack(f, dm, PairIndices{});
   rho_out = rho;
   ux_out = ux;
   uy_out = uy;
