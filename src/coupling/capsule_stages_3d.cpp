@@ -69,6 +69,24 @@ void MembraneSurface3D::ResetTo(const Eigen::Matrix3Xd& positions) {
 MembraneStage3D::MembraneStage3D(const Scene& scene, const LatticeUnits& units,
                                  MembraneSurface3D& body)
     : body_(body) {
+  // Vertices farther apart than 2 h leave holes the immersed boundary leaks through (the 4-point
+  // kernel's support is 4 h): refuse the scene, naming the subdivision that closes them (each
+  // level halves the edges).
+  {
+    const MeshQuality q = MeasureQuality(body.mesh);
+    if (q.max_edge > 2.0) {
+      int need = scene.mesh_subdivisions;
+      double edge = q.max_edge;
+      while (edge > 2.0 && need < 6) {
+        edge *= 0.5;
+        ++need;
+      }
+      throw SceneError("scene " + scene.name + ": the membrane mesh is too coarse for the grid: " +
+                       "longest edge " + Fmt(q.max_edge) + " h > 2 h (a = " + Fmt(units.radius) +
+                       " cells); set mesh_subdivisions >= " + std::to_string(need) + " (now " +
+                       std::to_string(scene.mesh_subdivisions) + ")");
+    }
+  }
   if (scene.membrane == MembraneKind::kDrop) {
     tension_ = units.tension;
     const MeshQuality q = MeasureQuality(body.mesh);

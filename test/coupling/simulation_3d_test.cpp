@@ -171,6 +171,13 @@ TEST(Simulation3D, SceneKeysAreValidatedForThreeDimensions) {
   refused({"eta=1"}, "not built in 3D yet");
   refused({"numerics.marker_filter_every=100"}, "0 in 3D");
   refused({"mesh_subdivisions=9"}, "out of range");
+  // A mesh too coarse for the grid (edges > 2 h) is refused naming the subdivision needed.
+  try {
+    Simulation coarse(ParseScene(kTinySphere, {"mesh_subdivisions=1", "N=48"}));
+    ADD_FAILURE() << "a 42-vertex mesh on a = 8 cells accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh_subdivisions >= 3"), std::string::npos) << e.what();
+  }
   // 2D scenes refuse the 3D keys.
   try {
     ParseScene(R"(
