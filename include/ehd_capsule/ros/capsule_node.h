@@ -111,8 +111,8 @@ class CapsuleNode {
   long last_throttled_step_ = -1;
   std::string field_layer_name_ = "speed";  // ~field_layer: none, speed, potential, field
   FieldLayer field_layer_ = FieldLayer::kSpeed;
-  int field_stride_ = 0;     // ~field_stride, cells per square (0: N / 64, at least 1)
-  double field_rate_ = 2.0;  // ~field_rate, Hz of wall time
+  int field_stride_ = 0;         // ~field_stride, cells per square (0: N / 64, at least 1)
+  double field_rate_ = 2.0;      // ~field_rate, Hz of wall time
   double field_interval_ = 0.1;  // ~field_interval: at least this often in simulation time
   double last_field_time_ = -1e300;
   std::string world_frame_;  // ~world_frame, parent of frame_id in /tf_static
