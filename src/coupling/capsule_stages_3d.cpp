@@ -11,12 +11,6 @@
 namespace ehd {
 namespace {
 
-std::string Fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
 SurfaceLaw LawOf(const Scene& s) {
   switch (s.law) {
     case SurfaceLawKind::kSkalak:
@@ -81,8 +75,9 @@ MembraneStage3D::MembraneStage3D(const Scene& scene, const LatticeUnits& units,
         edge *= 0.5;
         ++need;
       }
-      throw SceneError("scene " + scene.name + ": the membrane mesh is too coarse for the grid: " +
-                       "longest edge " + Fmt(q.max_edge) + " h > 2 h (a = " + Fmt(units.radius) +
+      throw SceneError("scene " + scene.name +
+                       ": the membrane mesh is too coarse for the grid: " + "longest edge " +
+                       FormatValue(q.max_edge) + " h > 2 h (a = " + FormatValue(units.radius) +
                        " cells); set mesh_subdivisions >= " + std::to_string(need) + " (now " +
                        std::to_string(scene.mesh_subdivisions) + ")");
     }
@@ -99,11 +94,11 @@ MembraneStage3D::MembraneStage3D(const Scene& scene, const LatticeUnits& units,
       throw SceneError("scene " + scene.name +
                        ": membrane explicit limit exceeded by the tension (Ca) term: stable "
                        "lattice dt " +
-                       Fmt(dt_stable) + " < 1; set numerics.membrane_substeps >= " +
+                       FormatValue(dt_stable) + " < 1; set numerics.membrane_substeps >= " +
                        std::to_string(static_cast<int>(
                            std::ceil(scene.numerics.membrane_substeps / dt_stable))));
     }
-    stability_ = "explicit limit dt <= " + Fmt(dt_stable);
+    stability_ = "explicit limit dt <= " + FormatValue(dt_stable);
     return;
   }
   SurfaceLawParameters law;
@@ -133,17 +128,17 @@ MembraneStage3D::MembraneStage3D(const Scene& scene, const LatticeUnits& units,
     const char* term =
         limits.bending_dt == limits.min_dt() ? "bending (E_b)" : "elasticity (Ca, C)";
     throw SceneError("scene " + scene.name + ": membrane explicit limit exceeded by the " + term +
-                     " term: stable lattice dt " + Fmt(dt_stable) + " < 1 (" +
-                     elasticity_->Describe() + ", shortest edge " + Fmt(q.min_edge) +
+                     " term: stable lattice dt " + FormatValue(dt_stable) + " < 1 (" +
+                     elasticity_->Describe() + ", shortest edge " + FormatValue(q.min_edge) +
                      " h); set numerics.membrane_substeps >= " + std::to_string(need) + " (now " +
                      std::to_string(scene.numerics.membrane_substeps) + ")");
   }
-  stability_ = "explicit limit dt <= " + Fmt(dt_stable);
+  stability_ = "explicit limit dt <= " + FormatValue(dt_stable);
 }
 
 std::string MembraneStage3D::Describe() const {
   if (!elasticity_) {
-    return "drop: surface tension gamma = " + Fmt(tension_) +
+    return "drop: surface tension gamma = " + FormatValue(tension_) +
            ", force gamma (Delta x)_i A_i (cotangent mean-curvature normal); " + stability_ +
            "\nmesh: " + MeasureQuality(body_.mesh).Describe();
   }
@@ -233,26 +228,14 @@ void FluidStage3D::ApplyShearRate() {
 
 void FluidStage3D::Run(long step) {
   lattice_->Step();
-  double max_speed2 = 0.0;
-  const double* ux = lattice_->velocity(0).data();
-  const double* uy = lattice_->velocity(1).data();
-  const double* uz = lattice_->velocity(2).data();
-  for (std::size_t i = 0; i < lattice_->nodes(); ++i) {
-    const double s2 = ux[i] * ux[i] + uy[i] * uy[i] + uz[i] * uz[i];
-    if (!(s2 <= max_speed2)) {
-      if (!std::isfinite(s2)) {
-        FailStep(step, "fluid velocity is not finite (NaN/Inf) at node " + std::to_string(i));
-      }
-      max_speed2 = s2;
-    }
-  }
   SimulationState& state = *body_.state;
-  state.max_mach = std::sqrt(max_speed2) / kLatticeSoundSpeed;
+  state.max_mach = MaxLatticeMach(
+      step, {&lattice_->velocity(0), &lattice_->velocity(1), &lattice_->velocity(2)});
   if (state.max_mach > scene_.numerics.max_mach) {
-    FailStep(step, "lattice Mach number " + Fmt(state.max_mach) + " > " +
-                       Fmt(scene_.numerics.max_mach) +
+    FailStep(step, "lattice Mach number " + FormatValue(state.max_mach) + " > " +
+                       FormatValue(scene_.numerics.max_mach) +
                        " (numerics.max_mach); largest membrane force per vertex " +
-                       Fmt(body_.force.colwise().norm().maxCoeff()));
+                       FormatValue(body_.force.colwise().norm().maxCoeff()));
   }
 }
 
@@ -303,8 +286,9 @@ void MarkerStage3D::Run(long step) {
                    hi = grid_.origin(a) + grid_.extent(a) * grid_.h;
       if (v < lo + margin || v > hi - margin) {
         FailStep(step, "vertex " + std::to_string(k) + " at " + std::string(1, "xyz"[a]) + " = " +
-                           Fmt(v) + " is within 2h of the wall " + std::string(1, "xyz"[a]) +
-                           " = " + Fmt(v < 0 ? lo : hi) + " (the membrane left the domain)");
+                           FormatValue(v) + " is within 2h of the wall " +
+                           std::string(1, "xyz"[a]) + " = " + FormatValue(v < 0 ? lo : hi) +
+                           " (the membrane left the domain)");
       }
     }
   }
@@ -384,8 +368,8 @@ void DiagnosticsStage3D::Run(long step) {
   }
   const double drift = d.volume / body_.initial_volume - 1.0;
   if (!std::isfinite(drift) || std::abs(drift) > scene_.numerics.area_drift_limit) {
-    FailStep(step, "enclosed volume drifted by " + Fmt(100.0 * drift) + "% (limit " +
-                       Fmt(100.0 * scene_.numerics.area_drift_limit) +
+    FailStep(step, "enclosed volume drifted by " + FormatValue(100.0 * drift) + "% (limit " +
+                       FormatValue(100.0 * scene_.numerics.area_drift_limit) +
                        "%, numerics.area_drift_limit); " + MeasureQuality(body_.mesh).Describe());
   }
   const double time = s.time + (scene_.has_shear() ? body_.shear_rate : units_.dt);

@@ -8,16 +8,6 @@
 #include "ehd_capsule/diagnostics/shape_diagnostics.h"
 
 namespace ehd {
-namespace {
-
-std::string Fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
-}  // namespace
-
 DiagnosticsStage2D::DiagnosticsStage2D(const Scene& scene, const LatticeUnits& units,
                                        MembraneMarkers2D& body, const LatticeBoltzmann2D& fluid,
                                        bool electric)
@@ -80,7 +70,8 @@ void DiagnosticsStage2D::Run(long step) {
       smallest = std::min(smallest, l);
       largest = std::max(largest, l);
     }
-    std::string hint = "; marker spacing " + Fmt(smallest) + " .. " + Fmt(largest) + " h";
+    std::string hint =
+        "; marker spacing " + FormatValue(smallest) + " .. " + FormatValue(largest) + " h";
     if (scene_.membrane == MembraneKind::kDrop && scene_.numerics.redistribute_markers == 0.0) {
       hint +=
           " (a drop's markers drift along its surface and bunch, leaving gaps the flow leaks "
@@ -88,8 +79,8 @@ void DiagnosticsStage2D::Run(long step) {
     } else if (largest > 2.0) {
       hint += " (gaps > 2 h leak: raise M)";
     }
-    FailStep(step, "enclosed area drifted by " + Fmt(100.0 * drift) + "% (limit " +
-                       Fmt(100.0 * scene_.numerics.area_drift_limit) +
+    FailStep(step, "enclosed area drifted by " + FormatValue(100.0 * drift) + "% (limit " +
+                       FormatValue(100.0 * scene_.numerics.area_drift_limit) +
                        "%, numerics.area_drift_limit)" + hint);
   }
   const double time = s.time + (scene_.has_shear() ? body_.shear_rate : units_.dt);

@@ -11,16 +11,6 @@
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
 
 namespace ehd {
-namespace {
-
-std::string Fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
-}  // namespace
-
 ElectricStage2D::ElectricStage2D(const Scene& scene, const LatticeUnits& units, const Grid2D& grid,
                                  MembraneMarkers2D& body)
     : scene_(scene), body_(body) {
@@ -83,7 +73,7 @@ void ElectricStage2D::Run(long step) {
   state.gmres_iterations = report.iterations;
   state.gmres_residual = report.residual;
   if (!report.converged) {
-    FailStep(step, "GMRES did not converge (residual " + Fmt(report.residual) + " after " +
+    FailStep(step, "GMRES did not converge (residual " + FormatValue(report.residual) + " after " +
                        std::to_string(report.iterations) + " iterations)");
   }
   body_.electric_density = solver_->force();

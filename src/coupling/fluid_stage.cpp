@@ -6,16 +6,6 @@
 #include "ehd_capsule/coupling/capsule_stages_2d.h"
 
 namespace ehd {
-namespace {
-
-std::string Fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
-}  // namespace
-
 FluidStage2D::FluidStage2D(const Scene& scene, const LatticeUnits& units, MembraneMarkers2D& body)
     : scene_(scene), units_(units), body_(body) {
   LbmParameters p;
@@ -50,30 +40,18 @@ void FluidStage2D::ApplyShearRate() {
 
 void FluidStage2D::Run(long step) {
   lattice_->Step();
-  double max_speed2 = 0.0;
-  const auto& ux = lattice_->ux();
-  const auto& uy = lattice_->uy();
-  for (std::size_t i = 0; i < ux.size(); ++i) {
-    const double s2 = ux[i] * ux[i] + uy[i] * uy[i];
-    if (!(s2 <= max_speed2)) {
-      if (!std::isfinite(s2)) {
-        FailStep(step, "fluid velocity is not finite (NaN/Inf) at node " + std::to_string(i));
-      }
-      max_speed2 = s2;
-    }
-  }
   SimulationState& state = *body_.state;
-  state.max_mach = std::sqrt(max_speed2) / kLatticeSoundSpeed;
+  state.max_mach = MaxLatticeMach(step, {&lattice_->ux(), &lattice_->uy()});
   if (state.max_mach > scene_.numerics.max_mach) {
     // Name the force behind the fast flow, so the user knows which number to lower.
     const double membrane_max = body_.membrane_density.colwise().norm().maxCoeff();
-    std::string forces = "; largest force density: membrane " + Fmt(membrane_max);
+    std::string forces = "; largest force density: membrane " + FormatValue(membrane_max);
     if (body_.electric_density.size() > 0) {
-      forces += ", electric " + Fmt(body_.electric_density.colwise().norm().maxCoeff()) +
-                " (Ca_E = " + Fmt(state.ca_e) + ")";
+      forces += ", electric " + FormatValue(body_.electric_density.colwise().norm().maxCoeff()) +
+                " (Ca_E = " + FormatValue(state.ca_e) + ")";
     }
-    FailStep(step, "lattice Mach number " + Fmt(state.max_mach) + " > " +
-                       Fmt(scene_.numerics.max_mach) + " (numerics.max_mach)" + forces);
+    FailStep(step, "lattice Mach number " + FormatValue(state.max_mach) + " > " +
+                       FormatValue(scene_.numerics.max_mach) + " (numerics.max_mach)" + forces);
   }
 }
 

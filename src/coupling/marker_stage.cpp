@@ -10,12 +10,6 @@
 namespace ehd {
 namespace {
 
-std::string Fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
 MarkerIntegrator IntegratorOf(const Scene& scene) {
   return scene.numerics.integrator == MarkerTimeScheme::kAdamsBashforth2
              ? MarkerIntegrator::kAdamsBashforth2
@@ -69,14 +63,15 @@ void MarkerStage2D::Run(long step) {
   for (int k = 0; k < body_.X.cols(); ++k) {
     const double y = body_.X(1, k);
     if (y < grid_.y0 + margin || y > grid_.y_max() - margin) {
-      FailStep(step, "marker " + std::to_string(k) + " at y = " + Fmt(y) +
-                         " is within 2h of the wall y = " + Fmt(y < 0 ? grid_.y0 : grid_.y_max()) +
+      FailStep(step, "marker " + std::to_string(k) + " at y = " + FormatValue(y) +
+                         " is within 2h of the wall y = " +
+                         FormatValue(y < 0 ? grid_.y0 : grid_.y_max()) +
                          " (the membrane left the domain)");
     }
     if (!scene_.has_shear()) {
       const double x = body_.X(0, k);
       if (x < grid_.x0 + margin || x > grid_.x_max() - margin) {
-        FailStep(step, "marker " + std::to_string(k) + " at x = " + Fmt(x) +
+        FailStep(step, "marker " + std::to_string(k) + " at x = " + FormatValue(x) +
                            " is within 2h of the side wall (the membrane left the domain)");
       }
     }

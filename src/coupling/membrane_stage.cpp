@@ -7,16 +7,6 @@
 #include "ehd_capsule/coupling/capsule_stages_2d.h"
 
 namespace ehd {
-namespace {
-
-std::string Fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
-}  // namespace
-
 MembraneStage2D::MembraneStage2D(const Scene& scene, const LatticeUnits& units,
                                  MembraneMarkers2D& body)
     : scene_(scene), body_(body) {
@@ -43,7 +33,8 @@ MembraneStage2D::MembraneStage2D(const Scene& scene, const LatticeUnits& units,
                        : limits.elastic_dt == limits.min_dt() ? "elasticity (Ca)"
                                                               : "tension (Ca)";
     throw SceneError("scene " + scene.name + ": membrane explicit limit exceeded by the " + term +
-                     " term: stable lattice dt " + Fmt(dt_stable) + " < 1 (" + model_->Describe() +
+                     " term: stable lattice dt " + FormatValue(dt_stable) + " < 1 (" +
+                     model_->Describe() +
                      "); set numerics.membrane_substeps >= " + std::to_string(need) + " (now " +
                      std::to_string(scene.numerics.membrane_substeps) + ")");
   }

@@ -20,6 +20,28 @@
 
 namespace ehd {
 
+std::string FormatValue(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+double MaxLatticeMach(long step, const std::vector<const std::vector<double>*>& components) {
+  double max_speed2 = 0.0;
+  const std::size_t n = components.front()->size();
+  for (std::size_t i = 0; i < n; ++i) {
+    double s2 = 0.0;
+    for (const std::vector<double>* c : components) s2 += (*c)[i] * (*c)[i];
+    if (!(s2 <= max_speed2)) {
+      if (!std::isfinite(s2)) {
+        FailStep(step, "fluid velocity is not finite (NaN/Inf) at node " + std::to_string(i));
+      }
+      max_speed2 = s2;
+    }
+  }
+  return std::sqrt(max_speed2) / kLatticeSoundSpeed;
+}
+
 void FailStep(long step, const std::string& what) {
   throw SimulationError("step " + std::to_string(step) + ": " + what);
 }
@@ -85,12 +107,6 @@ Eigen::Matrix2Xd InitialMarkers(const Scene& s, const LatticeUnits& u) {
   }
   throw SceneError("scene " + s.name + ": shape " + ToString(s.geometry.shape) +
                    " has no 2D marker set");
-}
-
-std::string Fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
 }
 
 }  // namespace
@@ -236,12 +252,12 @@ long Simulation::marker_redistributions() const {
 void Simulation::SetCaE(double ca_e) {
   const double max = scene_.electric.max_ca_e;
   if (!(ca_e >= 0.0 && ca_e <= max)) {
-    throw std::invalid_argument("Ca_E = " + Fmt(ca_e) + " is out of range: accepted [0, " +
-                                Fmt(max) + "] (electric.max_Ca_E)");
+    throw std::invalid_argument("Ca_E = " + FormatValue(ca_e) + " is out of range: accepted [0, " +
+                                FormatValue(max) + "] (electric.max_Ca_E)");
   }
   if (ca_e > 0.0 && !impl_->electric) {
-    throw std::invalid_argument("Ca_E = " + Fmt(ca_e) + " needs the electric field, but scene " +
-                                scene_.name +
+    throw std::invalid_argument("Ca_E = " + FormatValue(ca_e) +
+                                " needs the electric field, but scene " + scene_.name +
                                 " was built without it (accepted: 0; add an `electric:` block "
                                 "or Ca_E > 0 to the scene)");
   }
@@ -250,7 +266,7 @@ void Simulation::SetCaE(double ca_e) {
 
 void Simulation::SetCa(double ca) {
   if (!scene_.has_shear()) {
-    throw std::invalid_argument("Ca = " + Fmt(ca) + ": scene " + scene_.name +
+    throw std::invalid_argument("Ca = " + FormatValue(ca) + ": scene " + scene_.name +
                                 " has no shear flow (flow: none); accepted: none");
   }
   if (ca == 0.0) {
@@ -259,20 +275,21 @@ void Simulation::SetCa(double ca) {
     throw std::invalid_argument(
         "Ca = 0 would stop the walls and with them the time unit 1/k: "
         "accepted (0, " +
-        Fmt(scene_.max_Ca) + "]");
+        FormatValue(scene_.max_Ca) + "]");
   }
   if (!(ca > 0.0 && ca <= scene_.max_Ca)) {
-    throw std::invalid_argument("Ca = " + Fmt(ca) + " is out of range: accepted (0, " +
-                                Fmt(scene_.max_Ca) + "] (max_Ca, the scene's measured limit)");
+    throw std::invalid_argument("Ca = " + FormatValue(ca) + " is out of range: accepted (0, " +
+                                FormatValue(scene_.max_Ca) +
+                                "] (max_Ca, the scene's measured limit)");
   }
   const double k = ShearRateForCa(units_, ca);
   const double mach = k * units_.half_width / kLatticeSoundSpeed;
   if (mach > scene_.numerics.max_mach) {
     const double ca_max = scene_.numerics.max_mach * kLatticeSoundSpeed / units_.half_width *
                           units_.viscosity * units_.radius / units_.tension;
-    throw std::invalid_argument("Ca = " + Fmt(ca) + " gives wall Mach " + Fmt(mach) + " > " +
-                                Fmt(scene_.numerics.max_mach) + ": accepted [0, " + Fmt(ca_max) +
-                                "]");
+    throw std::invalid_argument("Ca = " + FormatValue(ca) + " gives wall Mach " +
+                                FormatValue(mach) + " > " + FormatValue(scene_.numerics.max_mach) +
+                                ": accepted [0, " + FormatValue(ca_max) + "]");
   }
   impl_->pending_ca = ca;
 }

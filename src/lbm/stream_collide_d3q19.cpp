@@ -185,6 +185,48 @@ inline double BounceBack(double reflected, int q, double wall_u) {
   return std::fma(6.0 * L::kWeight[q] * L::kC[q][0], wall_u, reflected);
 }
 
+// The interior i = 1..nx-2 of a row, in chunks: the 19 incoming streams (gather[q] + i) are
+// copied into an L1-resident block, the collision runs over the block (one SIMD loop over nodes,
+// every access at a constant offset) and the block is copied to the outgoing streams
+// (scatter[q] + i); rho and u go to the row's nodes (row + i). Both kernels use it: they differ
+// only in where the streams point.
+template <ForcingScheme kForcing, bool kVariableViscosity>
+void InteriorChunks(const lbm_kernels::StreamCollideArgs& a, const double* const* gather,
+                    double* const* scatter, std::size_t row, int nx) {
+  alignas(64) double block[kQ][kChunk];
+  alignas(64) double out_rho[kChunk], out_u[3][kChunk];
+  for (int i0 = 1; i0 < nx - 1; i0 += kChunk) {
+    const int len = std::min(kChunk, nx - 1 - i0);
+    for (int q = 0; q < kQ; ++q) {
+      const double* __restrict src = gather[q] + i0;
+      for (int i = 0; i < len; ++i) block[q][i] = src[i];
+    }
+    const std::size_t c = row + i0;
+    const double* __restrict fx = a.force[0] + c;
+    const double* __restrict fy = a.force[1] + c;
+    const double* __restrict fz = a.force[2] + c;
+    const double* __restrict nu = kVariableViscosity ? a.s_nu_field + c : nullptr;
+    for (int i = 0; i < len; ++i) {
+      double p[kQ];
+#pragma GCC unroll 19
+      for (int q = 0; q < kQ; ++q) p[q] = block[q][i];
+      const double s_nu = kVariableViscosity ? nu[i] : a.s_nu_uniform;
+      CollideD3Q19<kForcing>(p, fx[i], fy[i], fz[i], s_nu, a.rates, out_rho[i], out_u[0][i],
+                             out_u[1][i], out_u[2][i]);
+#pragma GCC unroll 19
+      for (int q = 0; q < kQ; ++q) block[q][i] = p[q];
+    }
+    for (int q = 0; q < kQ; ++q) {
+      double* __restrict dst = scatter[q] + i0;
+      for (int i = 0; i < len; ++i) dst[i] = block[q][i];
+    }
+    for (int i = 0; i < len; ++i) a.rho[c + i] = out_rho[i];
+    for (int d = 0; d < 3; ++d) {
+      for (int i = 0; i < len; ++i) a.u[d][c + i] = out_u[d][i];
+    }
+  }
+}
+
 template <ForcingScheme kForcing, bool kVariableViscosity>
 void StreamCollideRows(const lbm_kernels::StreamCollideArgs& a) {
   const int nx = a.nx, ny = a.ny, nz = a.nz;
@@ -240,47 +282,15 @@ void StreamCollideRows(const lbm_kernels::StreamCollideArgs& a) {
     }
     boundary_node(0, j, k);
     const std::size_t row = static_cast<std::size_t>(k) * plane + static_cast<std::size_t>(j) * nx;
-    const double* __restrict s[kQ];
+    const double* s[kQ];
     for (int q = 0; q < kQ; ++q) {
       const int sj = wrap(j - L::kC[q][1], ny), sk = wrap(k - L::kC[q][2], nz);
       s[q] = a.src + q * n + static_cast<std::size_t>(sk) * plane +
              static_cast<std::size_t>(sj) * nx - L::kC[q][0];
     }
-    // The interior in chunks: the 19 source streams are copied into an L1-resident block, the
-    // collision runs over the block (one SIMD loop over nodes, every access at a constant offset)
-    // and the block is copied to the destination rows.
-    alignas(64) double block[kQ][kChunk];
-    alignas(64) double out_rho[kChunk], out_u[3][kChunk];
-    for (int i0 = 1; i0 < nx - 1; i0 += kChunk) {
-      const int len = std::min(kChunk, nx - 1 - i0);
-      for (int q = 0; q < kQ; ++q) {
-        const double* __restrict src = s[q] + i0;
-        for (int i = 0; i < len; ++i) block[q][i] = src[i];
-      }
-      const std::size_t c = row + i0;
-      const double* __restrict fx = a.force[0] + c;
-      const double* __restrict fy = a.force[1] + c;
-      const double* __restrict fz = a.force[2] + c;
-      const double* __restrict nu = kVariableViscosity ? a.s_nu_field + c : nullptr;
-      for (int i = 0; i < len; ++i) {
-        double f[kQ];
-#pragma GCC unroll 19
-        for (int q = 0; q < kQ; ++q) f[q] = block[q][i];
-        const double s_nu = kVariableViscosity ? nu[i] : a.s_nu_uniform;
-        CollideD3Q19<kForcing>(f, fx[i], fy[i], fz[i], s_nu, a.rates, out_rho[i], out_u[0][i],
-                               out_u[1][i], out_u[2][i]);
-#pragma GCC unroll 19
-        for (int q = 0; q < kQ; ++q) block[q][i] = f[q];
-      }
-      for (int q = 0; q < kQ; ++q) {
-        double* __restrict dst = a.dst + q * n + c;
-        for (int i = 0; i < len; ++i) dst[i] = block[q][i];
-      }
-      for (int i = 0; i < len; ++i) a.rho[c + i] = out_rho[i];
-      for (int d = 0; d < 3; ++d) {
-        for (int i = 0; i < len; ++i) a.u[d][c + i] = out_u[d][i];
-      }
-    }
+    double* d[kQ];
+    for (int q = 0; q < kQ; ++q) d[q] = a.dst + q * n + row;
+    InteriorChunks<kForcing, kVariableViscosity>(a, s, d, row, nx);
     boundary_node(nx - 1, j, k);
   }
 }
@@ -379,7 +389,7 @@ void InPlaceRows(const lbm_kernels::StreamCollideArgs& a) {
     general_node(0, j, k);
     const std::size_t row = index(0, j, k);
     // Interior i = 1..nx-2: all 19 links stay inside; row pointers for the gather and scatter.
-    double* gather[kQ];
+    const double* gather[kQ];
     double* scatter[kQ];
     for (int q = 0; q < kQ; ++q) {
       if (kOdd) {
@@ -392,38 +402,7 @@ void InPlaceRows(const lbm_kernels::StreamCollideArgs& a) {
         scatter[q] = f + L::kOpposite[q] * n + row;
       }
     }
-    alignas(64) double block[kQ][kChunk];
-    alignas(64) double out_rho[kChunk], out_u[3][kChunk];
-    for (int i0 = 1; i0 < nx - 1; i0 += kChunk) {
-      const int len = std::min(kChunk, nx - 1 - i0);
-      for (int q = 0; q < kQ; ++q) {
-        const double* __restrict src = gather[q] + i0;
-        for (int i = 0; i < len; ++i) block[q][i] = src[i];
-      }
-      const std::size_t c = row + i0;
-      const double* __restrict fx = a.force[0] + c;
-      const double* __restrict fy = a.force[1] + c;
-      const double* __restrict fz = a.force[2] + c;
-      const double* __restrict nu = kVariableViscosity ? a.s_nu_field + c : nullptr;
-      for (int i = 0; i < len; ++i) {
-        double p[kQ];
-#pragma GCC unroll 19
-        for (int q = 0; q < kQ; ++q) p[q] = block[q][i];
-        const double s_nu = kVariableViscosity ? nu[i] : a.s_nu_uniform;
-        CollideD3Q19<kForcing>(p, fx[i], fy[i], fz[i], s_nu, a.rates, out_rho[i], out_u[0][i],
-                               out_u[1][i], out_u[2][i]);
-#pragma GCC unroll 19
-        for (int q = 0; q < kQ; ++q) block[q][i] = p[q];
-      }
-      for (int q = 0; q < kQ; ++q) {
-        double* __restrict dst = scatter[q] + i0;
-        for (int i = 0; i < len; ++i) dst[i] = block[q][i];
-      }
-      for (int i = 0; i < len; ++i) a.rho[c + i] = out_rho[i];
-      for (int d = 0; d < 3; ++d) {
-        for (int i = 0; i < len; ++i) a.u[d][c + i] = out_u[d][i];
-      }
-    }
+    InteriorChunks<kForcing, kVariableViscosity>(a, gather, scatter, row, nx);
     general_node(nx - 1, j, k);
   }
 }

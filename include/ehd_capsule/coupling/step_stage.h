@@ -10,6 +10,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "ehd_capsule/coupling/checkpoint_io.h"
 
@@ -21,6 +22,13 @@ struct SimulationError : std::runtime_error {
 
 // Throws SimulationError("step N: what"): how every watchdog and solver failure is reported.
 [[noreturn]] void FailStep(long step, const std::string& what);
+
+// The largest lattice Mach number |u| / c_s over the nodes of a velocity field given by its
+// components; FailStep names the first node whose speed is not finite.
+double MaxLatticeMach(long step, const std::vector<const std::vector<double>*>& components);
+
+// A number as the messages print it (shortest round-trip-free form, as std::ostream does).
+std::string FormatValue(double v);
 
 class StepStage {
  public:
