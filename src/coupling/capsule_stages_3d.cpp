@@ -351,6 +351,7 @@ void DiagnosticsStage3D::Reset() {
     }
   }
   body_.tracked_vertex = best;
+  initial_min_angle_ = MeasureQuality(body_.mesh).min_angle_deg;
   tracker_ = TankTreadingTracker(0);
   const Eigen::Vector3d r = x.col(best) - d.centroid;
   tracker_.UpdateRelative(0.0, Eigen::Vector2d(r.x(), r.y()), d.inclination);
@@ -371,6 +372,21 @@ void DiagnosticsStage3D::Run(long step) {
     FailStep(step, "enclosed volume drifted by " + FormatValue(100.0 * drift) + "% (limit " +
                        FormatValue(100.0 * scene_.numerics.area_drift_limit) +
                        "%, numerics.area_drift_limit); " + MeasureQuality(body_.mesh).Describe());
+  }
+  // Mesh-scale instability: vertices closer than a grid cell carry modes the immersed boundary
+  // cannot see, which can grow until triangles fold (the 3D counterpart of the 2D markers'
+  // sawtooth mode). Every 20 steps, a triangle angle below 5 degrees stops the run naming it,
+  // before the fold becomes a NaN or a Mach blow-up.
+  if (step % 20 == 0) {
+    const MeshQuality q = MeasureQuality(body_.mesh);
+    if (q.min_angle_deg < 5.0) {
+      FailStep(step, "membrane mesh degenerating: smallest triangle angle " +
+                         FormatValue(q.min_angle_deg) + " deg (initially " +
+                         FormatValue(initial_min_angle_) +
+                         "), a mesh-scale instability: use fewer vertices per grid cell "
+                         "(mesh_subdivisions lower or N higher) or more bending (E_b); " +
+                         q.Describe());
+    }
   }
   const double time = s.time + (scene_.has_shear() ? body_.shear_rate : units_.dt);
   const Eigen::Vector3d r = body_.mesh.vertices().col(body_.tracked_vertex) - d.centroid;

@@ -5,7 +5,8 @@
 //   spread       the vertex forces to the grid (eq. (106) with the 3D cosine delta)
 //   fluid        one D3Q19 MRT LBM step, walls y = +-L moving at +-k L, periodic in x and z
 //   markers      interpolate u (eq. (104)), advance, wrap periodically, check the walls
-//   diagnostics  volume watchdog, equivalent-ellipsoid D_xy and inclination, tank-treading
+//   diagnostics  volume and mesh-quality watchdogs, equivalent-ellipsoid D_xy and inclination,
+//                tank-treading
 #pragma once
 
 #include <Eigen/Core>
@@ -137,6 +138,7 @@ class DiagnosticsStage3D : public StepStage {
   MembraneSurface3D& body_;
   const LatticeBoltzmann3D& fluid_;
   TankTreadingTracker tracker_;
+  double initial_min_angle_ = 0;  // of the initial mesh, for the degeneration watchdog
 };
 
 // The scene's initial vertex positions (lattice units) on the icosphere of its subdivision.
