@@ -383,8 +383,10 @@ void DiagnosticsStage3D::Run(long step) {
       FailStep(step, "membrane mesh degenerating: smallest triangle angle " +
                          FormatValue(q.min_angle_deg) + " deg (initially " +
                          FormatValue(initial_min_angle_) +
-                         "), a mesh-scale instability: use fewer vertices per grid cell "
-                         "(mesh_subdivisions lower or N higher) or more bending (E_b); " +
+                         "): triangles folding (a mesh-scale instability: use fewer vertices per "
+                         "grid cell, i.e. mesh_subdivisions lower or N higher, or more bending "
+                         "E_b) or stretched beyond use (a drop's surface is not remeshed yet: "
+                         "lower Ca); " +
                          q.Describe());
     }
   }

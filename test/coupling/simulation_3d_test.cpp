@@ -85,6 +85,31 @@ flow: shear
   EXPECT_LT(sim.state().inclination / M_PI, 0.26);
 }
 
+// The mesh-quality watchdog: a soft drop (Ca = 1.5) stretches until its (not remeshed) triangles
+// degenerate; the run stops naming the angle instead of going on to a fold or a NaN.
+TEST(Simulation3D, DegeneratingMeshStopsTheRunWithTheReason) {
+  Simulation sim(ParseScene(R"(
+name: soft_drop3d
+dimension: 3
+Ca: 1.5
+Re: 0.1
+V: 1
+N: 24
+mesh_subdivisions: 3
+geometry: {shape: sphere, half_width: 3}
+membrane: drop
+flow: shear
+)"));
+  try {
+    while (sim.state().time < 8.0) sim.Step();
+    ADD_FAILURE() << "the stretched mesh was not caught";
+  } catch (const SimulationError& e) {
+    EXPECT_NE(std::string(e.what()).find("smallest triangle angle"), std::string::npos) << e.what();
+    EXPECT_TRUE(sim.state().markers.allFinite());
+    EXPECT_GT(sim.state().dxy, 0.5);
+  }
+}
+
 TEST(Simulation3D, CheckpointRestartAndResetAreBitForBit) {
   const Scene scene = ParseScene(kTinySphere, {"numerics.integrator=adams_bashforth2", "E_b=0.05"});
   const std::string path = ::testing::TempDir() + "/ehd_checkpoint_3d_test.bin";
