@@ -1,0 +1,67 @@
+// Local quadratic reconstruction of a triangulated surface and of functions on it, for the 3D
+// immersed interface corrections (issue #13), which need the interface position to O(h^3) and the
+// jump data at the foot point of a grid node to O(h^3) as well: the flat triangles and barycentric
+// interpolation are only O(h^2), which would leave an O(1) local error at the irregular nodes and
+// a first-order potential.
+//
+// At each vertex v, in the frame (t1, t2, n) of its area-weighted normal, the surface is the graph
+// z = c1 u + c2 w + c3 u^2 + c4 u w + c5 w^2 fitted through v by weighted least squares (weights
+// 1/|x_j - x_v|^2) over the vertices within `rings` edge rings (as FitCurvatures), and a vertex
+// function F by F(u, w) = a0 + a1 u + a2 w + a3 u^2 + a4 u w + a5 w^2 over the same vertices plus
+// v itself. Project(x) takes the patch of the nearest vertex of the nearest triangle and finds
+// the foot point on its graph by Newton's method on (x - X(u, w)) . X_u = (x - X) . X_w = 0.
+// The surface Laplacian of a fitted F is returned as F_uu + F_ww of the patch, exact at the vertex
+// up to the tilt of its frame and O(h) at the foot point (it enters the corrections multiplied by
+// d^2 = O(h^2)).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "ehd_capsule/geometry/surface_projection.h"
+#include "ehd_capsule/geometry/triangle_mesh.h"
+
+namespace ehd {
+
+struct SurfacePatch {
+  Eigen::Vector3d origin, t1, t2, n;  // the vertex and its frame
+  std::array<double, 5> height{};     // c1..c5
+  double curvature_sum = 0;           // kappa1 + kappa2 at the vertex (> 0 on a sphere)
+  std::vector<int> support;           // the vertex first, then its neighbours
+  Eigen::MatrixXd function_fit;       // 6 x |support|: coefficients a = function_fit * values
+};
+
+struct PatchFoot {
+  int vertex = -1;             // the patch used
+  double u = 0, w = 0;         // tangent coordinates of the foot point in that patch
+  Eigen::Vector3d point;       // the foot point on the fitted surface
+  Eigen::Vector3d normal;      // unit outward normal there
+  double signed_distance = 0;  // (x - point) . normal: > 0 outside
+  double curvature_sum = 0;    // kappa1 + kappa2 of the fitted graph at the foot point
+};
+
+class LocalSurfaceFit {
+ public:
+  // rings in [1, 4]; 2 is the default (the function fit has 6 unknowns; one ring has only about
+  // 6 neighbours). bucket: the cell size of the closest-triangle search (about the grid spacing).
+  LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int rings = 2);
+
+  PatchFoot Project(const Eigen::Vector3d& x) const;
+
+  // Coefficients a0..a5 of F in the patch of vertex v (values: one per mesh vertex).
+  std::array<double, 6> FitFunction(int v, const std::vector<double>& values) const;
+  // F, and its surface Laplacian, at a foot point.
+  double Value(const PatchFoot& foot, const std::vector<double>& values) const;
+  double SurfaceLaplacian(const PatchFoot& foot, const std::vector<double>& values) const;
+
+  const SurfacePatch& patch(int v) const { return patches_[v]; }
+  int vertex_count() const { return static_cast<int>(patches_.size()); }
+
+ private:
+  TriangleMesh mesh_;
+  SurfaceProjector projector_;
+  std::vector<SurfacePatch> patches_;
+};
+
+}  // namespace ehd
