@@ -174,4 +174,24 @@ double LocalSurfaceFit::SurfaceLaplacian(const PatchFoot& foot,
   return 2 * a[3] + 2 * a[5];
 }
 
+std::vector<double> LocalSurfaceFit::ValueWeights(const PatchFoot& foot) const {
+  const SurfacePatch& p = patches_[foot.vertex];
+  const double u = foot.u, w = foot.w;
+  const double basis[6] = {1, u, w, u * u, u * w, w * w};
+  std::vector<double> out(p.support.size(), 0.0);
+  for (std::size_t j = 0; j < out.size(); ++j) {
+    for (int i = 0; i < 6; ++i) out[j] += basis[i] * p.function_fit(i, j);
+  }
+  return out;
+}
+
+std::vector<double> LocalSurfaceFit::SurfaceLaplacianWeights(int v) const {
+  const SurfacePatch& p = patches_[v];
+  std::vector<double> out(p.support.size());
+  for (std::size_t j = 0; j < out.size(); ++j) {
+    out[j] = 2 * p.function_fit(3, j) + 2 * p.function_fit(5, j);
+  }
+  return out;
+}
+
 }  // namespace ehd

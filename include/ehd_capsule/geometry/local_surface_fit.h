@@ -55,6 +55,12 @@ class LocalSurfaceFit {
   double Value(const PatchFoot& foot, const std::vector<double>& values) const;
   double SurfaceLaplacian(const PatchFoot& foot, const std::vector<double>& values) const;
 
+  // The same as weights over patch(foot.vertex).support (F = sum_j weight_j values[support_j]):
+  // for operators that are applied many times to changing values (the Schur unknown of the 3D
+  // immersed interface method).
+  std::vector<double> ValueWeights(const PatchFoot& foot) const;
+  std::vector<double> SurfaceLaplacianWeights(int v) const;
+
   const SurfacePatch& patch(int v) const { return patches_[v]; }
   int vertex_count() const { return static_cast<int>(patches_.size()); }
 
