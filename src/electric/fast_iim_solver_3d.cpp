@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "ehd_capsule/electric/interface_jumps_3d.h"
+
 namespace ehd {
 namespace {
 
@@ -114,29 +116,29 @@ void FastIimSolver3D::SetUpBand(const TriangleMesh& surface) {
       }
     }
   }
-  // Foot points and the rows of J.
+  // Foot points and the rows of J (interface_jumps_3d.h).
   const std::size_t nb = band_node_.size();
   band_vertex_.resize(nb);
   band_offset_.assign(1, 0);
   band_support_.clear();
-  band_value_weight_.clear();
-  band_gcoef_.resize(nb);
-  band_d2_.resize(nb);
+  band_w_row_.clear();
+  band_g_row_.clear();
+  band_f_coefficient_.resize(nb);
+  band_f_dxi_coefficient_.resize(nb);
   for (std::size_t b = 0; b < nb; ++b) {
     const std::size_t node = band_node_[b];
     const int i = static_cast<int>(node % g.nx);
     const int j = static_cast<int>((node / g.nx) % g.ny);
     const int k = static_cast<int>(node / (static_cast<std::size_t>(g.nx) * g.ny));
-    const PatchFoot foot = fit_->Project(Eigen::Vector3d(g.x(i), g.y(j), g.z(k)));
-    const double d = foot.signed_distance;
-    band_vertex_[b] = foot.vertex;
-    band_gcoef_[b] = d - 0.5 * foot.curvature_sum * d * d;
-    band_d2_[b] = 0.5 * d * d;
-    const std::vector<double> weights = fit_->ValueWeights(foot);
-    const std::vector<int>& support = fit_->patch(foot.vertex).support;
+    const JumpStencil3D stencil = MakeJumpStencil(*fit_, Eigen::Vector3d(g.x(i), g.y(j), g.z(k)));
+    band_vertex_[b] = stencil.vertex;
+    band_f_coefficient_[b] = stencil.f_coefficient;
+    band_f_dxi_coefficient_[b] = stencil.f_dxi_coefficient;
+    const std::vector<int>& support = fit_->patch(stencil.vertex).support;
     for (std::size_t q = 0; q < support.size(); ++q) {
       band_support_.push_back(support[q]);
-      band_value_weight_.push_back(weights[q]);
+      band_w_row_.push_back(stencil.w_row[q]);
+      band_g_row_.push_back(stencil.g_row[q]);
     }
     band_offset_.push_back(static_cast<int>(band_support_.size()));
   }
@@ -219,11 +221,11 @@ void FastIimSolver3D::BandJump(const double* g, bool with_data) {
   const std::size_t nb = band_node_.size();
   band_jump_.resize(nb);
   for (std::size_t b = 0; b < nb; ++b) {
-    double gv = 0;
+    double j = with_data ? band_data_[b] : 0.0;
     for (int q = band_offset_[b]; q < band_offset_[b + 1]; ++q) {
-      gv += band_value_weight_[q] * g[band_support_[q]];
+      j += band_g_row_[q] * g[band_support_[q]];
     }
-    band_jump_[b] = band_gcoef_[b] * gv + (with_data ? band_data_[b] : 0.0);
+    band_jump_[b] = j;
   }
 }
 
@@ -272,6 +274,7 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
   check(problem.w, nv, "w");
   check(problem.v, nv, "v");
   check(problem.f_over_sigma_jump, nv, "f_over_sigma_jump");
+  check(problem.f_over_sigma_dxi_jump, nv, "f_over_sigma_dxi_jump");
   if (!problem.f.empty() && problem.f_over_sigma_jump.empty()) {
     throw std::invalid_argument(
         "FastIimSolver3D: f is given without f_over_sigma_jump ([f/sigma] "
@@ -297,24 +300,22 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
 
   w_ = problem.w.empty() ? std::vector<double>(nv, 0.0) : problem.w;
   v_ = problem.v.empty() ? std::vector<double>(nv, 0.0) : problem.v;
-  // Data part of J: w(foot) + d^2/2 ([f/sigma] - Delta_s w).
-  std::vector<double> laplace_w(nv, 0.0);
-  for (int v = 0; v < nv; ++v) {
-    const std::vector<double> weights = fit_->SurfaceLaplacianWeights(v);
-    const std::vector<int>& support = fit_->patch(v).support;
-    for (std::size_t q = 0; q < support.size(); ++q) laplace_w[v] += weights[q] * w_[support[q]];
-  }
+  // Data part of J: the w rows and the [f/sigma] terms.
   const std::size_t nb = band_node_.size();
   band_data_.resize(nb);
   for (std::size_t b = 0; b < nb; ++b) {
-    double wv = 0;
+    double j = 0;
     for (int q = band_offset_[b]; q < band_offset_[b + 1]; ++q) {
-      wv += band_value_weight_[q] * w_[band_support_[q]];
+      j += band_w_row_[q] * w_[band_support_[q]];
     }
     const int vertex = band_vertex_[b];
-    const double fjump =
-        problem.f_over_sigma_jump.empty() ? 0.0 : problem.f_over_sigma_jump[vertex];
-    band_data_[b] = wv + band_d2_[b] * (fjump - laplace_w[vertex]);
+    if (!problem.f_over_sigma_jump.empty()) {
+      j += band_f_coefficient_[b] * problem.f_over_sigma_jump[vertex];
+    }
+    if (!problem.f_over_sigma_dxi_jump.empty()) {
+      j += band_f_dxi_coefficient_[b] * problem.f_over_sigma_dxi_jump[vertex];
+    }
+    band_data_[b] = j;
   }
   rhs_base_.assign(grid3.size(), 0.0);
   if (!problem.f.empty()) {

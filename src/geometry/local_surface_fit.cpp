@@ -140,6 +140,7 @@ PatchFoot LocalSurfaceFit::Project(const Eigen::Vector3d& x) const {
   first << 1 + hu * hu, hu * hw, hu * hw, 1 + hw * hw;
   hess << 2 * c[2], c[3], c[3], 2 * c[4];
   foot.curvature_sum = -(first.inverse() * hess).trace() / std::sqrt(1 + hu * hu + hw * hw);
+  foot.gaussian_curvature = hess.determinant() / std::pow(1 + hu * hu + hw * hw, 2);
   return foot;
 }
 

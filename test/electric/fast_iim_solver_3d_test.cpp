@@ -2,7 +2,8 @@
 // a sphere in a uniform field (the leaky-dielectric conduction problem, [phi] = 0, [sigma phi_n]
 // = 0) at conductivity ratios sigma^-/sigma^+ = 0.1, 0.5, 2 and 10, and a general problem on an
 // ellipsoid ([phi], [sigma phi_n] and f all non-zero). The potential and [phi_n] at the vertices
-// must converge at second order (observed orders printed); refusals are checked by name.
+// must converge at second order (observed orders printed; [phi_n] on the ellipsoid, where the
+// cubic term needs the fitted Hessian of w, at about 1.5); refusals are checked by name.
 #include "ehd_capsule/electric/fast_iim_solver_3d.h"
 
 #include <gtest/gtest.h>
@@ -80,7 +81,7 @@ void ExpectSecondOrderSphere(double sigma_minus, double sigma_plus) {
   const double order_g = std::log2(e[1].g / e[2].g);
   std::printf("  orders 40 -> 80: phi %.2f  [phi_n] %.2f\n", order_phi, order_g);
   EXPECT_GT(order_phi, 1.6);
-  EXPECT_GT(order_g, 1.4);
+  EXPECT_GT(order_g, 1.8);
   EXPECT_LT(e[2].phi, 2e-3);
 }
 

@@ -102,6 +102,40 @@ TEST(InterfaceJumps3D, WithoutCorrectionsTheErrorIsOrderOne) {
   EXPECT_GT(fine, 0.05);
 }
 
+// J against the exact difference of the two smooth solutions, u^+ - u^- (both extend across the
+// surface), at points within 1.5 mesh edges of an ellipsoid: O(d^4) expansion and O(h^3) data fits
+// give an error that falls at third order or better with the mesh.
+TEST(InterfaceJumps3D, JumpExtensionMatchesTheExactDifference) {
+  const Shape shape{0.6, 0.45, 0.35};
+  double previous = 0;
+  for (int s = 3; s <= 5; ++s) {
+    const TriangleMesh mesh = EllipsoidMesh(s, shape.a, shape.b, shape.c);
+    const double edge = MeasureQuality(mesh).mean_edge;
+    const LocalSurfaceFit fit(mesh, edge);
+    SurfaceJumps3D jumps;
+    for (int v = 0; v < mesh.vertex_count(); ++v) {
+      const Eigen::Vector3d p = mesh.vertices().col(v);
+      jumps.w.push_back(Outer(p) - Inner(p));
+      jumps.g.push_back((OuterGradient(p) - InnerGradient(p)).dot(shape.Normal(p)));
+      jumps.f_jump.push_back(-2.0);
+    }
+    double error = 0;
+    for (int v = 0; v < mesh.vertex_count(); v += 7) {
+      const Eigen::Vector3d p = mesh.vertices().col(v);
+      for (double t : {-1.5, -0.7, 0.4, 1.5}) {
+        const Eigen::Vector3d x =
+            p + t * edge * shape.Normal(p) + 0.3 * edge * shape.Normal(p).unitOrthogonal();
+        error = std::max(error, std::abs(JumpExtension(fit, jumps, x) - (Outer(x) - Inner(x))));
+      }
+    }
+    std::printf("ellipsoid level %d (edge %.3f): max |J - (u+ - u-)| %.3e\n", s, edge, error);
+    if (s > 3) {
+      EXPECT_GT(std::log2(previous / error), 2.7) << "level " << s;
+    }
+    previous = error;
+  }
+}
+
 TEST(LocalSurfaceFit, SignedDistanceOnASphereConvergesAtThirdOrder) {
   double previous = 0;
   for (int s = 3; s <= 5; ++s) {

@@ -19,10 +19,10 @@
 // solved by restarted GMRES with the mat-vec R(G) - R(0), one Poisson solve each; for
 // sigma^+ = sigma^- G = v/sigma and one solve suffices.
 //
-// Departures from the text and from the 2D solver: the jump expansion stops at d^2 (second-order
-// potential; the 2D cubic term and deferred correction are not carried over), and [f/sigma] on
-// the surface is given by the caller (InterfaceProblem3D::f_over_sigma_jump: the leaky
-// dielectric has f = 0, so only manufactured tests need it). The near-null modes the 2D solver
+// Departures from the text and from the 2D solver: J includes the cubic term (as in 2D; the
+// deferred correction of the 2D solver is not carried over), and [f/sigma], [d_xi(f/sigma)] on
+// the surface are given by the caller (InterfaceProblem3D: the leaky dielectric has f = 0, so
+// only manufactured tests need them). The near-null modes the 2D solver
 // treats for sigma^- > sigma^+ (control basis, flux deflation, Richardson verification) are not
 // built yet: such a problem above max_inner_ratio is refused (SolverError), not solved badly.
 //
@@ -49,8 +49,9 @@ struct InterfaceProblem3D {
   double sigma_plus = 1.0;
   // f = div(sigma grad phi) at the nodes (each node its own region's value); empty means 0.
   std::vector<double> f;
-  // [f/sigma] at the vertices; required when f is given.
-  std::vector<double> f_over_sigma_jump;
+  // [f/sigma] at the vertices; required when f is given. [d(f/sigma)/dn] at the vertices (the
+  // cubic term of J); empty means 0.
+  std::vector<double> f_over_sigma_jump, f_over_sigma_dxi_jump;
   // [phi] and [sigma phi_n] at the vertices; empty means zero.
   std::vector<double> w, v;
   PoissonBoundaryData3D boundary;
@@ -105,12 +106,11 @@ class FastIimSolver3D {
   // fit radius of a vertex). slot_ maps a node to its band slot (-1: not in the band).
   std::vector<int> slot_;
   std::vector<std::size_t> band_node_;
-  std::vector<int> band_vertex_;           // patch vertex of the foot point
-  std::vector<int> band_offset_;           // rows into band_support_/band_gcoef_
-  std::vector<int> band_support_;          // vertex indices
-  std::vector<double> band_value_weight_;  // fitted value at the foot point
-  std::vector<double> band_gcoef_;         // d - (kappa1 + kappa2) d^2 / 2 (per band node)
-  std::vector<double> band_d2_;            // d^2 / 2
+  std::vector<int> band_vertex_;                 // patch vertex of the foot point
+  std::vector<int> band_offset_;                 // rows into the next three
+  std::vector<int> band_support_;                // vertex indices
+  std::vector<double> band_w_row_, band_g_row_;  // J rows (interface_jumps_3d.h)
+  std::vector<double> band_f_coefficient_, band_f_dxi_coefficient_;
   std::vector<double> band_data_, band_jump_;
   struct Crossing {
     std::size_t node;

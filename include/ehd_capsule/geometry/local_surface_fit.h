@@ -33,12 +33,13 @@ struct SurfacePatch {
 };
 
 struct PatchFoot {
-  int vertex = -1;             // the patch used
-  double u = 0, w = 0;         // tangent coordinates of the foot point in that patch
-  Eigen::Vector3d point;       // the foot point on the fitted surface
-  Eigen::Vector3d normal;      // unit outward normal there
-  double signed_distance = 0;  // (x - point) . normal: > 0 outside
-  double curvature_sum = 0;    // kappa1 + kappa2 of the fitted graph at the foot point
+  int vertex = -1;                // the patch used
+  double u = 0, w = 0;            // tangent coordinates of the foot point in that patch
+  Eigen::Vector3d point;          // the foot point on the fitted surface
+  Eigen::Vector3d normal;         // unit outward normal there
+  double signed_distance = 0;     // (x - point) . normal: > 0 outside
+  double curvature_sum = 0;       // kappa1 + kappa2 of the fitted graph at the foot point
+  double gaussian_curvature = 0;  // kappa1 kappa2 there
 };
 
 class LocalSurfaceFit {
