@@ -1,6 +1,7 @@
 #include "ehd_capsule/electric/fast_iim_solver_3d.h"
 
 #include <Eigen/Dense>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -153,6 +154,11 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
   fit_node_.clear();
   fit_slot_.clear();
   fit_gamma_.clear();
+  fit_gamma_t1_.clear();
+  fit_gamma_t2_.clear();
+  fit_normal_.resize(3, surface.vertex_count());
+  fit_t1_.resize(3, surface.vertex_count());
+  fit_t2_.resize(3, surface.vertex_count());
   std::vector<std::size_t> nodes;
   std::vector<Eigen::Vector3d> local;
   std::vector<double> weight;
@@ -164,6 +170,9 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
     const Eigen::Vector3d t1 = (patch.t1 - patch.t1.dot(normal) * normal).normalized();
     const Eigen::Vector3d t2 = normal.cross(t1);
     const Eigen::Vector3d p = x.col(v);
+    fit_normal_.col(v) = normal;
+    fit_t1_.col(v) = t1;
+    fit_t2_.col(v) = t2;
     nodes.clear();
     local.clear();
     weight.clear();
@@ -183,7 +192,7 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
       }
     }
     const int m = static_cast<int>(nodes.size());
-    Eigen::VectorXd gamma;
+    Eigen::VectorXd gamma, gamma_t1, gamma_t2;
     for (int degree = options_.fit_degree; degree >= 2; --degree) {
       const int terms = degree == 3 ? 20 : 10;
       if (m < terms + terms / 2) continue;
@@ -200,6 +209,8 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
       // Row of the xi coefficient of (W^1/2 A)^+ W^1/2, in physical units (1/h).
       const Eigen::MatrixXd pinv = qr.solve(Eigen::MatrixXd(root.asDiagonal()));
       gamma = pinv.row(1).transpose() / h;
+      gamma_t1 = pinv.row(2).transpose() / h;
+      gamma_t2 = pinv.row(3).transpose() / h;
       break;
     }
     if (gamma.size() == 0) {
@@ -212,6 +223,8 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
       fit_node_.push_back(nodes[q]);
       fit_slot_.push_back(sides_.side[nodes[q]] > 0 ? slot_[nodes[q]] : -1);
       fit_gamma_.push_back(gamma(q));
+      fit_gamma_t1_.push_back(gamma_t1(q));
+      fit_gamma_t2_.push_back(gamma_t2(q));
     }
     fit_offset_.push_back(static_cast<int>(fit_node_.size()));
   }
@@ -363,9 +376,110 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
   PotentialAndNormalDerivative(g.data(), true, phi, dn_minus_);
   dn_plus_.resize(nv);
   for (int v = 0; v < nv; ++v) dn_plus_[v] = dn_minus_[v] + g[v];
+  // Tangential gradients: phi^- from the fit's eta rows, phi^+ = phi^- + grad_s w (the patch fit
+  // of w, projected on the fit's tangent plane).
+  tangent_minus_.resize(3, nv);
+  tangent_plus_.resize(3, nv);
+  for (int v = 0; v < nv; ++v) {
+    double d1 = 0, d2 = 0;
+    for (int q = fit_offset_[v]; q < fit_offset_[v + 1]; ++q) {
+      const double value = phi[fit_node_[q]] - (fit_slot_[q] >= 0 ? band_jump_[fit_slot_[q]] : 0.0);
+      d1 += fit_gamma_t1_[q] * value;
+      d2 += fit_gamma_t2_[q] * value;
+    }
+    tangent_minus_.col(v) = d1 * fit_t1_.col(v) + d2 * fit_t2_.col(v);
+    const std::array<double, 6> a = fit_->FitFunction(v, w_);
+    const SurfacePatch& patch = fit_->patch(v);
+    Eigen::Vector3d grad_w = a[1] * patch.t1 + a[2] * patch.t2;
+    grad_w -= grad_w.dot(fit_normal_.col(v)) * fit_normal_.col(v);
+    tangent_plus_.col(v) = tangent_minus_.col(v) + grad_w;
+  }
+  last_phi_side_jump_ = band_jump_;
   report.solve_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return report;
+}
+
+void FastIimSolver3D::GridField(const std::vector<double>& phi, std::vector<double>& ex,
+                                std::vector<double>& ey, std::vector<double>& ez) const {
+  const Grid3D& g = grid();
+  if (phi.size() != g.size() || sides_.side.size() != g.size()) {
+    throw std::invalid_argument("FastIimSolver3D::GridField: phi has " +
+                                std::to_string(phi.size()) + " values for a grid of " +
+                                std::to_string(g.size()) + " (call after Solve)");
+  }
+  std::vector<double>* out[3] = {&ex, &ey, &ez};
+  for (auto* o : out) o->resize(g.size());
+  const int n[3] = {g.nx, g.ny, g.nz};
+  const double h = g.h;
+  for (int k = 0; k < g.nz; ++k) {
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) {
+        const std::size_t c = g.index(i, j, k);
+        const int sc = sides_.side[c];
+        for (int axis = 0; axis < 3; ++axis) {
+          // Neighbours at -2, -1, +1, +2 along the axis (-1: outside the box).
+          long nb[4] = {-1, -1, -1, -1};
+          const int offsets[4] = {-2, -1, 1, 2};
+          for (int s = 0; s < 4; ++s) {
+            int q[3] = {i, j, k};
+            q[axis] += offsets[s];
+            if (q[axis] >= 0 && q[axis] < n[axis]) {
+              nb[s] = static_cast<long>(g.index(q[0], q[1], q[2]));
+            }
+          }
+          // Value at a node seen from c's side: phi, or phi -/+ J across the surface (J is known
+          // at every neighbour across of an irregular node; a +-2 node across, where it is not,
+          // falls back to the one-sided first-order difference).
+          bool known = true;
+          const auto extended = [&](long o) {
+            if (sides_.side[o] == sc) return phi[o];
+            const int slot = slot_[o];
+            if (slot < 0) {
+              known = false;
+              return 0.0;
+            }
+            return phi[o] - sides_.side[o] * last_phi_side_jump_[slot];
+          };
+          double derivative = 0;
+          if (nb[1] >= 0 && nb[2] >= 0) {
+            derivative = (extended(nb[2]) - extended(nb[1])) / (2 * h);
+          } else if (nb[2] >= 0) {  // low face: second-order one-sided
+            derivative = (-3 * phi[c] + 4 * extended(nb[2]) - extended(nb[3])) / (2 * h);
+            if (!known) derivative = (extended(nb[2]) - phi[c]) / h;
+          } else if (nb[1] >= 0) {
+            derivative = (3 * phi[c] - 4 * extended(nb[1]) + extended(nb[0])) / (2 * h);
+            if (!known) derivative = (phi[c] - extended(nb[1])) / h;
+          }
+          (*out[axis])[c] = -derivative;
+        }
+      }
+    }
+  }
+}
+
+Eigen::Matrix3Xd MaxwellTraction3D(const Eigen::Matrix3Xd& normal, double eps_minus,
+                                   double eps_plus, const std::vector<double>& en_minus,
+                                   const std::vector<double>& en_plus,
+                                   const Eigen::Matrix3Xd& et_minus,
+                                   const Eigen::Matrix3Xd& et_plus) {
+  const long m = normal.cols();
+  if (static_cast<long>(en_minus.size()) != m || static_cast<long>(en_plus.size()) != m ||
+      et_minus.cols() != m || et_plus.cols() != m) {
+    throw std::invalid_argument(
+        "MaxwellTraction3D: field components must have one value per "
+        "vertex (" +
+        std::to_string(m) + ")");
+  }
+  Eigen::Matrix3Xd traction(3, m);
+  for (long v = 0; v < m; ++v) {
+    const double normal_part =
+        0.5 * (eps_plus * (en_plus[v] * en_plus[v] - et_plus.col(v).squaredNorm()) -
+               eps_minus * (en_minus[v] * en_minus[v] - et_minus.col(v).squaredNorm()));
+    traction.col(v) = normal_part * normal.col(v) + eps_plus * en_plus[v] * et_plus.col(v) -
+                      eps_minus * en_minus[v] * et_minus.col(v);
+  }
+  return traction;
 }
 
 }  // namespace ehd

@@ -2,7 +2,8 @@
 // a sphere in a uniform field (the leaky-dielectric conduction problem, [phi] = 0, [sigma phi_n]
 // = 0) at conductivity ratios sigma^-/sigma^+ = 0.1, 0.5, 2 and 10, and a general problem on an
 // ellipsoid ([phi], [sigma phi_n] and f all non-zero). The potential and [phi_n] at the vertices
-// must converge at second order (observed orders printed; [phi_n] on the ellipsoid, where the
+// must converge at second order, and so must the Maxwell traction at the vertices and the grid
+// field E = -grad phi (observed orders printed; [phi_n] on the ellipsoid, where the
 // cubic term needs the fitted Hessian of w, at about 1.5); refusals are checked by name.
 #include "ehd_capsule/electric/fast_iim_solver_3d.h"
 
@@ -15,7 +16,7 @@ namespace ehd {
 namespace {
 
 struct Errors {
-  double phi = 0, g = 0, dn_plus = 0;
+  double phi = 0, g = 0, dn_plus = 0, traction = 0, traction_scale = 0, grid_field = 0;
   int iterations = 0;
 };
 
@@ -65,6 +66,50 @@ Errors SphereInField(int n, int subdivisions, double sigma_minus, double sigma_p
     out.g = std::max(out.g, std::abs(g[v] - (dn_plus - dn_minus)));
     out.dn_plus = std::max(out.dn_plus, std::abs(solver.normal_derivative_plus()[v] - dn_plus));
   }
+  // Maxwell traction with eps^- = 3.5, eps^+ = 1 (song2019 ch. 6's ratio) against the exact
+  // fields E^- = A E z_hat and E^+ = -grad phi^+ at the vertices.
+  const double eps_minus = 3.5, eps_plus = 1.0;
+  std::vector<double> en_minus(mesh.vertex_count()), en_plus(mesh.vertex_count());
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    en_minus[v] = -solver.normal_derivative_minus()[v];
+    en_plus[v] = -solver.normal_derivative_plus()[v];
+  }
+  const Eigen::Matrix3Xd traction =
+      MaxwellTraction3D(solver.normals(), eps_minus, eps_plus, en_minus, en_plus,
+                        -solver.tangential_gradient_minus(), -solver.tangential_gradient_plus());
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    const Eigen::Vector3d p = mesh.vertices().col(v), n = p.normalized();
+    const Eigen::Vector3d e_minus(0, 0, a * e), e_plus = -outer_gradient(p.x(), p.y(), p.z());
+    const auto normal_and_tangent = [&](const Eigen::Vector3d& field, double& fn,
+                                        Eigen::Vector3d& ft) {
+      fn = field.dot(n);
+      ft = field - fn * n;
+    };
+    double fn_minus, fn_plus;
+    Eigen::Vector3d ft_minus, ft_plus;
+    normal_and_tangent(e_minus, fn_minus, ft_minus);
+    normal_and_tangent(e_plus, fn_plus, ft_plus);
+    const Eigen::Vector3d exact = 0.5 *
+                                      (eps_plus * (fn_plus * fn_plus - ft_plus.squaredNorm()) -
+                                       eps_minus * (fn_minus * fn_minus - ft_minus.squaredNorm())) *
+                                      n +
+                                  eps_plus * fn_plus * ft_plus - eps_minus * fn_minus * ft_minus;
+    out.traction = std::max(out.traction, (traction.col(v) - exact).norm());
+    out.traction_scale = std::max(out.traction_scale, exact.norm());
+  }
+  std::vector<double> ex, ey, ez;
+  solver.GridField(phi, ex, ey, ez);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::size_t c = grid.index(i, j, k);
+        const double x = grid.x(i), y = grid.y(j), z = grid.z(k);
+        const Eigen::Vector3d exact = solver.classification().side[c] > 0
+                                          ? Eigen::Vector3d(-outer_gradient(x, y, z))
+                                          : Eigen::Vector3d(0, 0, a * e);
+        out.grid_field =
+            std::max(out.grid_field, (Eigen::Vector3d(ex[c], ey[c], ez[c]) - exact).norm());
+      }
   return out;
 }
 
@@ -73,15 +118,22 @@ void ExpectSecondOrderSphere(double sigma_minus, double sigma_plus) {
   Errors e[3];
   for (int r = 0; r < 3; ++r) {
     e[r] = SphereInField(grids[r], subdivisions[r], sigma_minus, sigma_plus);
-    std::printf("sigma-/sigma+ = %g  n = %d  phi %.2e  [phi_n] %.2e  phi_n+ %.2e  (%d its)\n",
-                sigma_minus / sigma_plus, grids[r], e[r].phi, e[r].g, e[r].dn_plus,
-                e[r].iterations);
+    std::printf(
+        "sigma-/sigma+ = %g  n = %d  phi %.2e  [phi_n] %.2e  phi_n+ %.2e  traction %.2e (of %.2f)"
+        "  grid E %.2e  (%d its)\n",
+        sigma_minus / sigma_plus, grids[r], e[r].phi, e[r].g, e[r].dn_plus, e[r].traction,
+        e[r].traction_scale, e[r].grid_field, e[r].iterations);
   }
   const double order_phi = std::log2(e[1].phi / e[2].phi);
   const double order_g = std::log2(e[1].g / e[2].g);
-  std::printf("  orders 40 -> 80: phi %.2f  [phi_n] %.2f\n", order_phi, order_g);
+  const double order_traction = std::log2(e[1].traction / e[2].traction);
+  const double order_field = std::log2(e[1].grid_field / e[2].grid_field);
+  std::printf("  orders 40 -> 80: phi %.2f  [phi_n] %.2f  traction %.2f  grid E %.2f\n", order_phi,
+              order_g, order_traction, order_field);
   EXPECT_GT(order_phi, 1.6);
   EXPECT_GT(order_g, 1.8);
+  EXPECT_GT(order_traction, 1.6);
+  EXPECT_GT(order_field, 1.5);
   EXPECT_LT(e[2].phi, 2e-3);
 }
 

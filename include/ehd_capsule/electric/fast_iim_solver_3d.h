@@ -83,6 +83,19 @@ class FastIimSolver3D {
 
   const std::vector<double>& normal_derivative_minus() const { return dn_minus_; }
   const std::vector<double>& normal_derivative_plus() const { return dn_plus_; }
+  // Of the last solve, at the vertices: the unit outward normal of the fits, and the tangential
+  // gradients grad_s phi^- (fit) and grad_s phi^+ = grad_s phi^- + grad_s w. The field is
+  // E = -grad phi: E_n^+- = -phi_n^+-, E_tau^+- = -grad_s phi^+-.
+  const Eigen::Matrix3Xd& normals() const { return fit_normal_; }
+  const Eigen::Matrix3Xd& tangential_gradient_minus() const { return tangent_minus_; }
+  const Eigen::Matrix3Xd& tangential_gradient_plus() const { return tangent_plus_; }
+  // E = -grad phi on the grid for the phi of the last solve: centred differences of the values
+  // seen from the node's side (phi, or phi -/+ J across the surface), second-order one-sided
+  // differences at the box faces. Departure from song2019 sec. 2.4.4 (and the 2D
+  // ComputeGridField), which take the first-order one-sided difference towards the same-side
+  // neighbour at irregular nodes: with J known there, the extension keeps the field second order.
+  void GridField(const std::vector<double>& phi, std::vector<double>& ex, std::vector<double>& ey,
+                 std::vector<double>& ez) const;
   const SurfaceClassification3D& classification() const { return sides_; }
   const Grid3D& grid() const { return poisson_.grid(); }
   int poisson_solves() const { return poisson_solves_; }
@@ -122,7 +135,10 @@ class FastIimSolver3D {
   std::vector<int> fit_offset_;
   std::vector<std::size_t> fit_node_;
   std::vector<int> fit_slot_;
-  std::vector<double> fit_gamma_;
+  std::vector<double> fit_gamma_, fit_gamma_t1_, fit_gamma_t2_;
+  Eigen::Matrix3Xd fit_normal_, fit_t1_, fit_t2_;
+  Eigen::Matrix3Xd tangent_minus_, tangent_plus_;
+  std::vector<double> last_phi_side_jump_;  // J at the band nodes for the final G
   std::vector<double> rhs_base_, rhs_, phi_work_, dn_work_;
   std::vector<double> dn_minus_, dn_plus_;
   std::vector<double> w_, v_;
@@ -130,5 +146,15 @@ class FastIimSolver3D {
   int poisson_solves_ = 0;
   RestartedGmres gmres_;
 };
+
+// Maxwell traction jump [M_E] . n per unit area at the vertices (song2019 sec. 3.5 in 3D),
+// M_E = eps (E E - |E|^2 I / 2), E = E_n n + E_tau:
+//   [M_E] . n = 1/2 [eps (E_n^2 - |E_tau|^2)] n + [eps E_n E_tau].
+// Throws std::invalid_argument for inconsistent sizes.
+Eigen::Matrix3Xd MaxwellTraction3D(const Eigen::Matrix3Xd& normal, double eps_minus,
+                                   double eps_plus, const std::vector<double>& en_minus,
+                                   const std::vector<double>& en_plus,
+                                   const Eigen::Matrix3Xd& et_minus,
+                                   const Eigen::Matrix3Xd& et_plus);
 
 }  // namespace ehd
