@@ -2,8 +2,10 @@
 // song2019 sec. 2.3.5 / 2.5 (and an ellipse and a five-petal star): per grid size N the L-inf
 // error against the exact solution, error ratio, observed order, GMRES iterations and wall ms.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <string>
@@ -12,12 +14,227 @@
 #include "command.h"
 #include "ehd_capsule/electric/correction_function_solver.h"
 #include "ehd_capsule/electric/fast_iim_solver.h"
+#include "ehd_capsule/electric/fast_iim_solver_3d.h"
 #include "ehd_capsule/electric/interface_examples.h"
+#include "ehd_capsule/electric/interface_examples_3d.h"
 
 namespace ehd::cli {
 namespace {
 
+// Max error over the nodes (each against its classified side's exact phi), of [phi_n] and of the
+// Maxwell traction at the vertices (exact fields, exact normal).
+struct Errors3D {
+  double phi = 0, g = 0, traction = 0;
+};
+
+Errors3D MeasureErrors3D(const InterfaceExample3D& e, const Grid3D& grid, const TriangleMesh& mesh,
+                         const FastIimSolver3D& solver, const std::vector<double>& g,
+                         const std::vector<double>& phi, double eps_minus, double eps_plus) {
+  Errors3D out;
+  for (int k = 0; k < grid.nz; ++k)
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i) {
+        const std::size_t c = grid.index(i, j, k);
+        const Eigen::Vector3d p(grid.x(i), grid.y(j), grid.z(k));
+        const double exact = solver.classification().side[c] > 0 ? e.phi_plus(p) : e.phi_minus(p);
+        out.phi = std::max(out.phi, std::abs(phi[c] - exact));
+      }
+  const int nv = mesh.vertex_count();
+  std::vector<double> en_minus(nv), en_plus(nv);
+  for (int v = 0; v < nv; ++v) {
+    en_minus[v] = -solver.normal_derivative_minus()[v];
+    en_plus[v] = -solver.normal_derivative_plus()[v];
+  }
+  const Eigen::Matrix3Xd traction =
+      MaxwellTraction3D(solver.normals(), eps_minus, eps_plus, en_minus, en_plus,
+                        -solver.tangential_gradient_minus(), -solver.tangential_gradient_plus());
+  for (int v = 0; v < nv; ++v) {
+    const Eigen::Vector3d x = mesh.vertices().col(v), n = e.normal(x);
+    const Eigen::Vector3d em = -e.grad_minus(x), ep = -e.grad_plus(x);
+    out.g = std::max(out.g, std::abs(g[v] - (-ep.dot(n) + em.dot(n))));
+    const double enm = em.dot(n), enp = ep.dot(n);
+    const Eigen::Vector3d etm = em - enm * n, etp = ep - enp * n;
+    const Eigen::Vector3d exact = 0.5 *
+                                      (eps_plus * (enp * enp - etp.squaredNorm()) -
+                                       eps_minus * (enm * enm - etm.squaredNorm())) *
+                                      n +
+                                  eps_plus * enp * etp - eps_minus * enm * etm;
+    out.traction = std::max(out.traction, (traction.col(v) - exact).norm());
+  }
+  return out;
+}
+
+int RunIim3D(const std::vector<std::string>& args) {
+  std::string example = "sphere_field";
+  double sigma_minus = 1, sigma_plus = 1, eps_minus = 3.5, eps_plus = 1;
+  bool sigma_given = false;
+  std::vector<int> grids = {32, 48, 64, 96};
+  bool csv = false, warm = false;
+  int mesh_level = 0;  // 0: the coarsest with edges <= 1.5 h
+  FastIim3DOptions options;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--dim") {
+      OptionValue(args, i);
+    } else if (a == "--example") {
+      example = OptionValue(args, i);
+    } else if (a == "--sigma-minus" || a == "--sigma-plus" || a == "--eps-minus" ||
+               a == "--eps-plus") {
+      const double value = ParseDouble(a, OptionValue(args, i));
+      if (!(value > 0)) throw UsageError(a + " must be > 0");
+      (a == "--sigma-minus"  ? sigma_minus
+       : a == "--sigma-plus" ? sigma_plus
+       : a == "--eps-minus"  ? eps_minus
+                             : eps_plus) = value;
+      sigma_given = sigma_given || a.rfind("--sigma", 0) == 0;
+    } else if (a == "--grids") {
+      grids = ParseIntList(a, OptionValue(args, i));
+      for (int n : grids)
+        if (n < 8) throw UsageError("--grids: each N must be >= 8, got " + std::to_string(n));
+    } else if (a == "--max-fit-disagreement") {
+      options.max_fit_disagreement = ParseDouble(a, OptionValue(args, i));
+    } else if (a == "--max-inner-ratio") {
+      options.max_inner_ratio = ParseDouble(a, OptionValue(args, i));
+    } else if (a == "--gmres-tolerance") {
+      options.gmres.tolerance = ParseDouble(a, OptionValue(args, i));
+      if (!(options.gmres.tolerance > 0.0 && options.gmres.tolerance < 1.0)) {
+        throw UsageError("--gmres-tolerance must be in (0, 1)");
+      }
+    } else if (a == "--mesh-level") {
+      mesh_level = static_cast<int>(ParseLong(a, OptionValue(args, i)));
+      if (mesh_level < 1 || mesh_level > 7) throw UsageError("--mesh-level must be in [1, 7]");
+    } else if (a == "--warm") {
+      warm = true;
+    } else if (a == "--csv") {
+      csv = true;
+    } else {
+      throw UsageError("unknown option '" + a + "'");
+    }
+  }
+  (void)sigma_given;
+  InterfaceExample3D e;
+  try {
+    e = MakeInterfaceExample3D(example, sigma_minus, sigma_plus);
+  } catch (const std::invalid_argument& err) {
+    throw UsageError(std::string("--example: ") + err.what());
+  }
+  if (csv) {
+    std::cout << "example,N,vertices,sigma_minus,sigma_plus,linf_phi,order_phi,linf_g,order_g,"
+                 "linf_traction,order_traction,fit_error,fit_disagreement,iterations,solve_ms,"
+                 "poisson_solves,poisson_ms,warm_iterations,warm_ms,status\n";
+  } else {
+    std::printf("3D example %s: %s\nsigma- = %g, sigma+ = %g, eps- = %g, eps+ = %g\n",
+                e.name.c_str(), e.description.c_str(), sigma_minus, sigma_plus, eps_minus,
+                eps_plus);
+    std::printf("%5s %8s %10s %6s %10s %6s %10s %6s %10s %9s %5s %9s %7s %9s%s\n", "N", "vertices",
+                "Linf phi", "order", "[phi_n]", "order", "traction", "order", "fit(exact)",
+                "fit dis.", "iter", "ms/solve", "solves", "Poisson ms",
+                warm ? "  warm iter  warm ms" : "");
+  }
+  Errors3D previous;
+  int previous_n = 0, refused = 0;
+  for (int n : grids) {
+    const Grid3D grid = e.MakeGrid(n);
+    const TriangleMesh mesh = mesh_level > 0 ? e.mesh(mesh_level) : e.MeshFor(grid.h);
+    FastIimSolver3D solver(grid, e.boundaries, options);
+    std::vector<double> g, phi;
+    InterfaceSolveReport report;
+    const SurfaceClassification3D sides = ClassifyNodes(grid, mesh);
+    const InterfaceProblem3D problem = SampleInterfaceProblem3D(e, grid, mesh, sides);
+    try {
+      report = solver.Solve(mesh, problem, g, phi);
+    } catch (const SolverError& err) {
+      ++refused;
+      if (csv) {
+        std::printf("%s,%d,%d,%g,%g,,,,,,,,,,,,,refused: %s\n", e.name.c_str(), n,
+                    mesh.vertex_count(), sigma_minus, sigma_plus, err.what());
+      } else {
+        std::printf("%5d %8d   refused: %s\n", n, mesh.vertex_count(), err.what());
+      }
+      previous_n = 0;
+      continue;
+    }
+    const int solves = solver.poisson_solves();
+    const double disagreement = solver.fit_disagreement();
+    // The normal-derivative operator on its own: phi_n^- from the exact grid potential and the
+    // exact [phi_n], against the exact phi_n^-.
+    double fit_error = 0;
+    {
+      std::vector<double> exact_phi(grid.size()), exact_g(mesh.vertex_count()), dn;
+      for (int k = 0; k < grid.nz; ++k)
+        for (int j = 0; j < grid.ny; ++j)
+          for (int i = 0; i < grid.nx; ++i) {
+            const std::size_t c = grid.index(i, j, k);
+            const Eigen::Vector3d p(grid.x(i), grid.y(j), grid.z(k));
+            exact_phi[c] = solver.classification().side[c] > 0 ? e.phi_plus(p) : e.phi_minus(p);
+          }
+      for (int v = 0; v < mesh.vertex_count(); ++v) {
+        const Eigen::Vector3d x = mesh.vertices().col(v);
+        exact_g[v] = (e.grad_plus(x) - e.grad_minus(x)).dot(e.normal(x));
+      }
+      solver.EvaluateNormalDerivative(exact_phi, exact_g, dn);
+      for (int v = 0; v < mesh.vertex_count(); ++v) {
+        const Eigen::Vector3d x = mesh.vertices().col(v);
+        fit_error = std::max(fit_error, std::abs(dn[v] - e.grad_minus(x).dot(e.normal(x))));
+      }
+    }
+    const Errors3D err = MeasureErrors3D(e, grid, mesh, solver, g, phi, eps_minus, eps_plus);
+    // One Poisson solve of the same size, for the cost ratio.
+    FastPoissonSolver3D poisson(grid, e.boundaries);
+    std::vector<double> rhs(grid.size(), 1.0), out;
+    poisson.Solve(rhs, out);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int r = 0; r < 3; ++r) poisson.Solve(rhs, out);
+    const double poisson_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
+        3;
+    // Warm start: the surface moved by 0.01 h, G of the solve above as the guess.
+    int warm_iterations = -1;
+    double warm_ms = 0;
+    if (warm) {
+      Eigen::Matrix3Xd moved = mesh.vertices();
+      moved.row(0).array() += 0.01 * grid.h;
+      TriangleMesh shifted = mesh;
+      shifted.SetVertices(moved);
+      const InterfaceProblem3D p2 =
+          SampleInterfaceProblem3D(e, grid, shifted, ClassifyNodes(grid, shifted));
+      std::vector<double> phi2;
+      const InterfaceSolveReport r2 = solver.Solve(shifted, p2, g, phi2);
+      warm_iterations = r2.iterations;
+      warm_ms = r2.solve_ms;
+    }
+    const auto order = [&](double now, double before) {
+      return previous_n > 0 ? std::log(before / now) / std::log(static_cast<double>(n) / previous_n)
+                            : std::nan("");
+    };
+    const double op = order(err.phi, previous.phi), og = order(err.g, previous.g),
+                 ot = order(err.traction, previous.traction);
+    if (csv) {
+      std::printf(
+          "%s,%d,%d,%g,%g,%.6e,%.3f,%.6e,%.3f,%.6e,%.3f,%.6e,%.6e,%d,%.2f,%d,%.3f,%d,%.2f,ok\n",
+          e.name.c_str(), n, mesh.vertex_count(), sigma_minus, sigma_plus, err.phi, op, err.g, og,
+          err.traction, ot, fit_error, disagreement, report.iterations, report.solve_ms, solves,
+          poisson_ms, warm_iterations, warm_ms);
+    } else {
+      std::printf("%5d %8d %10.3e %6.2f %10.3e %6.2f %10.3e %6.2f %10.2e %9.2e %5d %9.1f %7d %9.2f",
+                  n, mesh.vertex_count(), err.phi, op, err.g, og, err.traction, ot, fit_error,
+                  disagreement, report.iterations, report.solve_ms, solves, poisson_ms);
+      if (warm) std::printf("  %9d %8.1f", warm_iterations, warm_ms);
+      std::printf("\n");
+    }
+    previous = err;
+    previous_n = n;
+  }
+  return refused > 0 ? 1 : 0;
+}
+
 int RunIim(const std::vector<std::string>& args) {
+  for (std::size_t i = 0; i + 1 < args.size(); ++i) {
+    if (args[i] == "--dim") {
+      if (args[i + 1] == "3") return RunIim3D(args);
+      if (args[i + 1] != "2") throw UsageError("--dim: expected 2 or 3, got '" + args[i + 1] + "'");
+    }
+  }
   std::string example = "1", method = "iim";
   double sigma_minus = -1, sigma_plus = -1;
   std::vector<int> grids = {40, 80, 160, 320};
@@ -31,6 +248,8 @@ int RunIim(const std::vector<std::string>& args) {
     const std::string& a = args[i];
     if (a == "--example") {
       example = OptionValue(args, i);
+    } else if (a == "--dim") {
+      OptionValue(args, i);  // 2 (3 is dispatched above)
     } else if (a == "--method") {
       method = OptionValue(args, i);
       if (method != "iim" && method != "cfm") {
@@ -167,8 +386,9 @@ int RunIim(const std::vector<std::string>& args) {
 }
 
 const CommandRegistration kIim(
-    {"iim", "convergence tables of the fast IIM / CFM on the interface examples",
-     "usage: ehd_sim iim [--example 1|2|3|3a|3b|4|cfm1|cfm2|ellipse|star|star_tight|biconcave]\n"
+    {"iim", "convergence tables of the fast IIM / CFM on the interface examples (2D and 3D)",
+     "usage: ehd_sim iim [--dim 2] [--example "
+     "1|2|3|3a|3b|4|cfm1|cfm2|ellipse|star|star_tight|biconcave]\n"
      "                   [--method iim|cfm] [--sigma-minus S] [--sigma-plus S]\n"
      "                   [--grids 40,80,160,320]\n"
      "                   [--markers M | --marker-spacing S] [--[no-]deferred-correction]\n"
@@ -185,7 +405,22 @@ const CommandRegistration kIim(
      "measure the bare discretisation.\n"
      "--[no-]deferred-correction: re-solve with the 5-point truncation T estimated from the\n"
      "first solution (FastIimOptions / CorrectionFunctionOptions::deferred_correction; default\n"
-     "on for both).\n",
+     "on for both).\n"
+     "\n"
+     "usage: ehd_sim iim --dim 3 [--example sphere_field|sphere|ellipsoid|biconcave]\n"
+     "                   [--sigma-minus S] [--sigma-plus S] [--eps-minus E] [--eps-plus E]\n"
+     "                   [--grids 32,48,64,96] [--max-inner-ratio R] [--gmres-tolerance TOL]\n"
+     "                   [--max-fit-disagreement F] [--mesh-level L] [--warm] [--csv]\n"
+     "The 3D fast IIM (FastIimSolver3D) on N^3 grids of [-1,1]^3, the mesh level the coarsest\n"
+     "with edges <= 1.5 h (or --mesh-level: icosphere level, 4 = 2562 vertices): per N the\n"
+     "L-inf error of phi over the nodes, of [phi_n] and of the Maxwell traction (eps-, eps+;\n"
+     "default 3.5, 1) at the vertices, observed orders; 'fit(exact)', the phi_n^- error of the\n"
+     "normal-derivative fit applied to the exact potential (the operator on its own);\n"
+     "'fit dis.', the cubic/quadratic disagreement the solver checks; GMRES iterations, ms per\n"
+     "solve, Poisson solves per solve and the time of one Poisson solve of that size.\n"
+     "--warm: re-solve with the surface moved by 0.01 h from the previous G.\n"
+     "A refused solve (unresolved surface, sigma-/sigma+ > max-inner-ratio, failed checks) is\n"
+     "a row saying why; the exit status is then 1.\n",
      RunIim});
 
 }  // namespace

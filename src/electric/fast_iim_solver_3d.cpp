@@ -1,6 +1,7 @@
 #include "ehd_capsule/electric/fast_iim_solver_3d.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -156,6 +157,7 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
   fit_gamma_.clear();
   fit_gamma_t1_.clear();
   fit_gamma_t2_.clear();
+  fit_gamma_check_.clear();
   fit_normal_.resize(3, surface.vertex_count());
   fit_t1_.resize(3, surface.vertex_count());
   fit_t2_.resize(3, surface.vertex_count());
@@ -192,33 +194,46 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
       }
     }
     const int m = static_cast<int>(nodes.size());
-    Eigen::VectorXd gamma, gamma_t1, gamma_t2;
-    for (int degree = options_.fit_degree; degree >= 2; --degree) {
+    // Weighted least squares by the normal equations M c = A^T W y, M = A^T W A (20 x 20 or
+    // 10 x 10, coordinates in units of h): only the rows of M^-1 A^T W for c_xi, c_eta1, c_eta2
+    // are needed, gamma_k(q) = w_q m_q^T M^-1 e_k, at O(m terms^2) per vertex. A fit whose M is
+    // ill-conditioned (reciprocal condition < 1e-12) drops to the quadratic.
+    const auto fit_rows = [&](int degree, Eigen::MatrixXd& rows) {
       const int terms = degree == 3 ? 20 : 10;
-      if (m < terms + terms / 2) continue;
-      Eigen::MatrixXd a(m, terms);
-      Eigen::VectorXd root(m);
-      double mono[20];
+      if (m < terms + terms / 2) return false;
+      Eigen::MatrixXd mono(terms, m);
+      double row[20];
       for (int q = 0; q < m; ++q) {
-        Monomials(local[q].x(), local[q].y(), local[q].z(), mono);
-        root(q) = std::sqrt(weight[q]);
-        for (int t = 0; t < terms; ++t) a(q, t) = root(q) * mono[t];
+        Monomials(local[q].x(), local[q].y(), local[q].z(), row);
+        for (int t = 0; t < terms; ++t) mono(t, q) = row[t];
       }
-      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-      if (qr.rank() < terms) continue;
-      // Row of the xi coefficient of (W^1/2 A)^+ W^1/2, in physical units (1/h).
-      const Eigen::MatrixXd pinv = qr.solve(Eigen::MatrixXd(root.asDiagonal()));
-      gamma = pinv.row(1).transpose() / h;
-      gamma_t1 = pinv.row(2).transpose() / h;
-      gamma_t2 = pinv.row(3).transpose() / h;
-      break;
-    }
-    if (gamma.size() == 0) {
+      const Eigen::MatrixXd normal_matrix =
+          mono * Eigen::Map<const Eigen::VectorXd>(weight.data(), m).asDiagonal() *
+          mono.transpose();
+      const Eigen::LDLT<Eigen::MatrixXd> ldlt(normal_matrix);
+      if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12)) return false;
+      const Eigen::MatrixXd x =
+          ldlt.solve(Eigen::MatrixXd::Identity(terms, terms).middleCols(1, 3));
+      rows = ((mono.transpose() * x).array().colwise() *
+              Eigen::Map<const Eigen::ArrayXd>(weight.data(), m))
+                 .matrix() /
+             h;
+      return true;
+    };
+    Eigen::MatrixXd rows, check_rows;
+    int degree = options_.fit_degree;
+    while (degree >= 2 && !fit_rows(degree, rows)) --degree;
+    if (degree < 2) {
       throw SolverError("3D immersed interface: the normal-derivative fit at vertex " +
                         std::to_string(v) + " has " + std::to_string(m) +
                         " nodes within fit_radius_h (a quadratic needs 15 in general position); "
                         "the surface is too close to the box or the grid too coarse");
     }
+    // The one-degree-lower fit, for the resolution check after the solve (the cubic and the
+    // quadratic agree to O(h^2) where the field is resolved near the surface).
+    const bool has_check = degree == 3 && fit_rows(2, check_rows);
+    const Eigen::VectorXd gamma = rows.col(0), gamma_t1 = rows.col(1), gamma_t2 = rows.col(2);
+    for (int q = 0; q < m; ++q) fit_gamma_check_.push_back(has_check ? check_rows(q, 0) : gamma(q));
     for (int q = 0; q < m; ++q) {
       fit_node_.push_back(nodes[q]);
       fit_slot_.push_back(sides_.side[nodes[q]] > 0 ? slot_[nodes[q]] : -1);
@@ -227,6 +242,35 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
       fit_gamma_t2_.push_back(gamma_t2(q));
     }
     fit_offset_.push_back(static_cast<int>(fit_node_.size()));
+  }
+}
+
+void FastIimSolver3D::CheckFitAgreement(const std::vector<double>& phi,
+                                        const std::vector<double>& g) {
+  const int nv = static_cast<int>(fit_offset_.size()) - 1;
+  double scale = 0, worst = 0;
+  int worst_vertex = -1;
+  for (int v = 0; v < nv; ++v) {
+    double check = 0;
+    for (int q = fit_offset_[v]; q < fit_offset_[v + 1]; ++q) {
+      check += fit_gamma_check_[q] *
+               (phi[fit_node_[q]] - (fit_slot_[q] >= 0 ? band_jump_[fit_slot_[q]] : 0.0));
+    }
+    scale = std::max({scale, std::abs(dn_minus_[v]), std::abs(dn_minus_[v] + g[v])});
+    if (std::abs(check - dn_minus_[v]) > worst) {
+      worst = std::abs(check - dn_minus_[v]);
+      worst_vertex = v;
+    }
+  }
+  fit_disagreement_ = scale > 0 ? worst / scale : 0.0;
+  if (fit_disagreement_ > options_.max_fit_disagreement) {
+    std::ostringstream os;
+    os << "3D immersed interface: at vertex " << worst_vertex
+       << " the cubic and quadratic fits of phi_n^- differ by " << fit_disagreement_
+       << " of max |phi_n| (> max_fit_disagreement = " << options_.max_fit_disagreement
+       << "): the potential is not resolved by the grid near the surface there (a thin part, "
+          "or a source or field varying on the grid scale); refine the electric grid";
+    throw SolverError(os.str());
   }
 }
 
@@ -239,6 +283,27 @@ void FastIimSolver3D::BandJump(const double* g, bool with_data) {
       j += band_g_row_[q] * g[band_support_[q]];
     }
     band_jump_[b] = j;
+  }
+}
+
+void FastIimSolver3D::EvaluateNormalDerivative(const std::vector<double>& phi,
+                                               const std::vector<double>& g,
+                                               std::vector<double>& dn_minus) {
+  const int nv = static_cast<int>(fit_offset_.size()) - 1;
+  if (nv <= 0 || phi.size() != grid().size() || static_cast<int>(g.size()) != nv) {
+    throw std::invalid_argument(
+        "EvaluateNormalDerivative: call after Solve() with phi of the "
+        "grid's size and one g per vertex");
+  }
+  BandJump(g.data(), true);
+  dn_minus.resize(nv);
+  for (int v = 0; v < nv; ++v) {
+    double s = 0;
+    for (int q = fit_offset_[v]; q < fit_offset_[v + 1]; ++q) {
+      s += fit_gamma_[q] *
+           (phi[fit_node_[q]] - (fit_slot_[q] >= 0 ? band_jump_[fit_slot_[q]] : 0.0));
+    }
+    dn_minus[v] = s;
   }
 }
 
@@ -307,6 +372,18 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
   poisson_solves_ = 0;
   CheckResolution(surface);
   sides_ = ClassifyNodes(grid3, surface);
+  const MultipleCrossing thin = FindMultipleCrossing(grid3, surface);
+  if (thin.found) {
+    const char* axis_name[3] = {"x", "y", "z"};
+    std::ostringstream os;
+    os << "3D immersed interface: the surface crosses the grid segment from node (" << thin.node[0]
+       << ", " << thin.node[1] << ", " << thin.node[2] << ") along " << axis_name[thin.axis]
+       << " twice, " << thin.gap_h
+       << " h apart: a part thinner than the grid spacing h = " << grid3.h
+       << " (e.g. a biconcave dimple), which the stencil cannot see; the electric grid "
+       << "needs h below " << thin.gap_h * grid3.h << " there";
+    throw SolverError(os.str());
+  }
   fit_ = std::make_unique<LocalSurfaceFit>(surface, grid3.h);
   SetUpBand(surface);
   SetUpFits(surface);
@@ -374,6 +451,7 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
     for (int v = 0; v < nv; ++v) g[v] = x(v);
   }
   PotentialAndNormalDerivative(g.data(), true, phi, dn_minus_);
+  CheckFitAgreement(phi, g);
   dn_plus_.resize(nv);
   for (int v = 0; v < nv; ++v) dn_plus_[v] = dn_minus_[v] + g[v];
   // Tangential gradients: phi^- from the fit's eta rows, phi^+ = phi^- + grad_s w (the patch fit
@@ -388,7 +466,7 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
       d2 += fit_gamma_t2_[q] * value;
     }
     tangent_minus_.col(v) = d1 * fit_t1_.col(v) + d2 * fit_t2_.col(v);
-    const std::array<double, 6> a = fit_->FitFunction(v, w_);
+    const auto a = fit_->FitFunction(v, w_);
     const SurfacePatch& patch = fit_->patch(v);
     Eigen::Vector3d grad_w = a[1] * patch.t1 + a[2] * patch.t2;
     grad_w -= grad_w.dot(fit_normal_.col(v)) * fit_normal_.col(v);

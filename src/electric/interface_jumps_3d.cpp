@@ -23,6 +23,7 @@ JumpStencil3D MakeJumpStencil(const LocalSurfaceFit& fit, const Eigen::Vector3d&
     dh2 += patch.function_fit(2, q) * hq;
   }
   const std::vector<double> value = fit.ValueWeights(foot);
+  const std::vector<double> laplace_foot = fit.SurfaceLaplacianWeights(foot);
   JumpStencil3D s;
   s.vertex = foot.vertex;
   s.distance = d;
@@ -34,8 +35,10 @@ JumpStencil3D MakeJumpStencil(const LocalSurfaceFit& fit, const Eigen::Vector3d&
     const double b_hess = b11 * 2 * patch.function_fit(3, q) + 2 * b12 * patch.function_fit(4, q) +
                           b22 * 2 * patch.function_fit(5, q);
     const double grad = dh1 * patch.function_fit(1, q) + dh2 * patch.function_fit(2, q);
-    // w: w + d^2/2 (-Delta w) + d^3/6 (H Delta w + 2 B:Hess w + grad H . grad w).
-    s.w_row[q] = value[q] - d2 * lap + d3 * (h_sum * lap + 2 * b_hess + grad);
+    // w: w + d^2/2 (-Delta w) + d^3/6 (H Delta w + 2 B:Hess w + grad H . grad w), Delta w of
+    // the d^2 term at the foot point (at the vertex it would be O(h) off), the d^3 terms at the
+    // vertex.
+    s.w_row[q] = value[q] - d2 * laplace_foot[q] + d3 * (h_sum * lap + 2 * b_hess + grad);
     // g: g d - d^2/2 H g + d^3/6 ((H^2 + |B|^2) g - Delta g).
     s.g_row[q] = value[q] * (d - d2 * h_sum + d3 * (h_sum * h_sum + b_square)) - d3 * lap;
   }

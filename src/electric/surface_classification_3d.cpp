@@ -23,28 +23,28 @@ bool OwnsEdge(double ax, double ay, double bx, double by) {
   return (dy == 0.0 && dx < 0.0) || dy < 0.0;
 }
 
-}  // namespace
-
-SurfaceClassification3D ClassifyNodes(const Grid3D& g, const TriangleMesh& surface) {
+// Calls add(line, t, sign, cosine) for every crossing of the grid lines along `axis` (line =
+// index of the line in the other two axes, u + n_u v, (u, v) the next axes in cyclic order; t the
+// coordinate along axis; sign +1 where the outward normal points along +axis; cosine = |n . e|
+// of the triangle's normal), by rasterising each triangle's projection with the top-left rule
+// (no double counts at shared edges).
+template <typename Add>
+void ForEachLineCrossing(const Grid3D& g, const TriangleMesh& surface, int axis, Add add) {
   const Eigen::Matrix3Xd& x = surface.vertices();
-  const double x_lo = g.x0, x_hi = g.x0 + g.nx * g.h, y_lo = g.y0, y_hi = g.y0 + g.ny * g.h;
-  if (x.row(0).minCoeff() <= x_lo || x.row(0).maxCoeff() >= x_hi || x.row(1).minCoeff() <= y_lo ||
-      x.row(1).maxCoeff() >= y_hi) {
-    throw std::invalid_argument(
-        "ClassifyNodes: the surface must lie strictly inside the grid's box in x and y");
-  }
-  // Crossings per column: (z, sign).
-  std::vector<std::vector<std::pair<double, int>>> columns(static_cast<std::size_t>(g.nx) * g.ny);
+  const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+  const int nu = g.extent(ua), nv = g.extent(va);
+  const double u0 = g.origin(ua), v0 = g.origin(va), h = g.h;
   for (const auto& t : surface.triangles()) {
     double px[3], py[3], pz[3];
     for (int c = 0; c < 3; ++c) {
-      px[c] = x(0, t[c]);
-      py[c] = x(1, t[c]);
-      pz[c] = x(2, t[c]);
+      px[c] = x(ua, t[c]);
+      py[c] = x(va, t[c]);
+      pz[c] = x(axis, t[c]);
     }
     const double area2 = EdgeFunction(px[0], py[0], px[1], py[1], px[2], py[2]);
-    if (area2 == 0.0) continue;  // vertical in projection: crosses no column interior
-    // Orient counter-clockwise in projection; sign = +1 if it was (outward normal up).
+    if (area2 == 0.0) continue;  // edge-on in projection: crosses no line interior
+    // Orient counter-clockwise in projection; sign = +1 if it was (outward normal along +axis:
+    // (u, v, axis) is right-handed).
     int order[3] = {0, 1, 2};
     int sign = 1;
     if (area2 < 0.0) {
@@ -55,31 +55,50 @@ SurfaceClassification3D ClassifyNodes(const Grid3D& g, const TriangleMesh& surfa
                  cx = px[order[2]], cy = py[order[2]];
     const double az = pz[order[0]], bz = pz[order[1]], cz = pz[order[2]];
     const double area = std::abs(area2);
+    const Eigen::Vector3d face = (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0]));
+    const double cosine = area / face.norm();
     const bool own_ab = OwnsEdge(ax, ay, bx, by), own_bc = OwnsEdge(bx, by, cx, cy),
                own_ca = OwnsEdge(cx, cy, ax, ay);
     const int i0 =
-        std::max(0, static_cast<int>(std::floor((std::min({ax, bx, cx}) - g.x0) / g.h - 0.5)));
-    const int i1 = std::min(
-        g.nx - 1, static_cast<int>(std::ceil((std::max({ax, bx, cx}) - g.x0) / g.h - 0.5)));
+        std::max(0, static_cast<int>(std::floor((std::min({ax, bx, cx}) - u0) / h - 0.5)));
+    const int i1 =
+        std::min(nu - 1, static_cast<int>(std::ceil((std::max({ax, bx, cx}) - u0) / h - 0.5)));
     const int j0 =
-        std::max(0, static_cast<int>(std::floor((std::min({ay, by, cy}) - g.y0) / g.h - 0.5)));
-    const int j1 = std::min(
-        g.ny - 1, static_cast<int>(std::ceil((std::max({ay, by, cy}) - g.y0) / g.h - 0.5)));
+        std::max(0, static_cast<int>(std::floor((std::min({ay, by, cy}) - v0) / h - 0.5)));
+    const int j1 =
+        std::min(nv - 1, static_cast<int>(std::ceil((std::max({ay, by, cy}) - v0) / h - 0.5)));
     for (int j = j0; j <= j1; ++j) {
-      const double qy = g.y(j);
+      const double qy = v0 + (j + 0.5) * h;
       for (int i = i0; i <= i1; ++i) {
-        const double qx = g.x(i);
+        const double qx = u0 + (i + 0.5) * h;
         const double w0 = EdgeFunction(bx, by, cx, cy, qx, qy);  // weight of a
         const double w1 = EdgeFunction(cx, cy, ax, ay, qx, qy);  // weight of b
         const double w2 = EdgeFunction(ax, ay, bx, by, qx, qy);  // weight of c
         const bool in = (w0 > 0.0 || (w0 == 0.0 && own_bc)) &&
                         (w1 > 0.0 || (w1 == 0.0 && own_ca)) && (w2 > 0.0 || (w2 == 0.0 && own_ab));
         if (!in) continue;
-        const double z = (w0 * az + w1 * bz + w2 * cz) / area;
-        columns[static_cast<std::size_t>(j) * g.nx + i].emplace_back(z, sign);
+        add(static_cast<std::size_t>(j) * nu + i, (w0 * az + w1 * bz + w2 * cz) / area, sign,
+            cosine);
       }
     }
   }
+}
+
+}  // namespace
+
+SurfaceClassification3D ClassifyNodes(const Grid3D& g, const TriangleMesh& surface) {
+  const Eigen::Matrix3Xd& x = surface.vertices();
+  const double x_lo = g.x0, x_hi = g.x0 + g.nx * g.h, y_lo = g.y0, y_hi = g.y0 + g.ny * g.h;
+  if (x.row(0).minCoeff() <= x_lo || x.row(0).maxCoeff() >= x_hi || x.row(1).minCoeff() <= y_lo ||
+      x.row(1).maxCoeff() >= y_hi) {
+    throw std::invalid_argument(
+        "ClassifyNodes: the surface must lie strictly inside the grid's box in x and y");
+  }
+  // Crossings per column along z (line index i + nx j): (z, sign).
+  std::vector<std::vector<std::pair<double, int>>> columns(static_cast<std::size_t>(g.nx) * g.ny);
+  ForEachLineCrossing(g, surface, 2, [&](std::size_t line, double z, int sign, double) {
+    columns[line].emplace_back(z, sign);
+  });
   SurfaceClassification3D out;
   out.side.assign(g.size(), 1);
   out.irregular.assign(g.size(), 0);
@@ -124,6 +143,47 @@ SurfaceClassification3D ClassifyNodes(const Grid3D& g, const TriangleMesh& surfa
           out.irregular[node] = 1;
           ++out.irregular_count;
         }
+      }
+    }
+  }
+  return out;
+}
+
+constexpr double kHeadOnCosine = 0.5;
+
+MultipleCrossing FindMultipleCrossing(const Grid3D& g, const TriangleMesh& surface) {
+  MultipleCrossing out;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+    const int nu = g.extent(ua), na = g.extent(axis);
+    std::vector<std::vector<std::pair<double, double>>> lines(static_cast<std::size_t>(nu) *
+                                                              g.extent(va));
+    ForEachLineCrossing(g, surface, axis, [&](std::size_t line, double t, int, double cosine) {
+      lines[line].emplace_back(t, cosine);
+    });
+    for (std::size_t line = 0; line < lines.size(); ++line) {
+      auto& t = lines[line];
+      if (t.size() < 2) continue;
+      std::sort(t.begin(), t.end());
+      for (std::size_t k = 0; k + 1 < t.size(); ++k) {
+        // Interval between nodes i and i + 1 along the axis (cell-centred coordinates).
+        const double s0 = (t[k].first - g.origin(axis)) / g.h - 0.5;
+        const double s1 = (t[k + 1].first - g.origin(axis)) / g.h - 0.5;
+        const int i = static_cast<int>(std::floor(s0));
+        if (i < 0 || i + 1 >= na || static_cast<int>(std::floor(s1)) != i) continue;
+        // A line grazing a curved sheet also crosses it twice within a cell, through a sliver
+        // much thinner than h that does no harm; a thin layer is crossed nearly head-on twice.
+        if (std::min(t[k].second, t[k + 1].second) < kHeadOnCosine) continue;
+        const double gap = (t[k + 1].first - t[k].first) / g.h;
+        if (out.found && gap >= out.gap_h) continue;
+        out.found = true;
+        out.axis = axis;
+        out.gap_h = gap;
+        int node[3];
+        node[axis] = i;
+        node[ua] = static_cast<int>(line % nu);
+        node[va] = static_cast<int>(line / nu);
+        out.node = {node[0], node[1], node[2]};
       }
     }
   }

@@ -30,18 +30,49 @@ std::vector<int> Rings(const TriangleMesh& mesh, int v, int rings, std::vector<i
   return out;
 }
 
-double Height(const std::array<double, 5>& c, double u, double w) {
-  return c[0] * u + c[1] * w + c[2] * u * u + c[3] * u * w + c[4] * w * w;
+// Height and its derivatives (h, h_u, h_w, h_uu, h_uw, h_ww) of the patch graph at (u, w).
+struct HeightJet {
+  double h, hu, hw, huu, huw, hww;
+};
+HeightJet Height(const std::array<double, 9>& c, double u, double w) {
+  HeightJet j;
+  j.h = c[0] * u + c[1] * w + c[2] * u * u + c[3] * u * w + c[4] * w * w + c[5] * u * u * u +
+        c[6] * u * u * w + c[7] * u * w * w + c[8] * w * w * w;
+  j.hu = c[0] + 2 * c[2] * u + c[3] * w + 3 * c[5] * u * u + 2 * c[6] * u * w + c[7] * w * w;
+  j.hw = c[1] + c[3] * u + 2 * c[4] * w + c[6] * u * u + 2 * c[7] * u * w + 3 * c[8] * w * w;
+  j.huu = 2 * c[2] + 6 * c[5] * u + 2 * c[6] * w;
+  j.huw = c[3] + 2 * c[6] * u + 2 * c[7] * w;
+  j.hww = 2 * c[4] + 2 * c[7] * u + 6 * c[8] * w;
+  return j;
+}
+
+// Monomials 1, u, w, u^2, u w, w^2, u^3, u^2 w, u w^2, w^3.
+void Basis(double u, double w, double* b) {
+  b[0] = 1;
+  b[1] = u;
+  b[2] = w;
+  b[3] = u * u;
+  b[4] = u * w;
+  b[5] = w * w;
+  b[6] = u * u * u;
+  b[7] = u * u * w;
+  b[8] = u * w * w;
+  b[9] = w * w * w;
 }
 
 }  // namespace
 
-LocalSurfaceFit::LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int rings)
+LocalSurfaceFit::LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int rings, int degree)
     : mesh_(mesh), projector_(mesh, bucket) {
   if (rings < 1 || rings > 4) {
     throw std::invalid_argument("LocalSurfaceFit: rings = " + std::to_string(rings) +
                                 " outside [1, 4]");
   }
+  if (degree != 2 && degree != 3) {
+    throw std::invalid_argument("LocalSurfaceFit: degree = " + std::to_string(degree) +
+                                " (2 or 3)");
+  }
+  const int height_terms = degree == 3 ? 9 : 5, function_terms = degree == 3 ? 10 : 6;
   const Eigen::Matrix3Xd& x = mesh.vertices();
   const int nv = mesh.vertex_count();
   Eigen::Matrix3Xd normal = Eigen::Matrix3Xd::Zero(3, nv);
@@ -56,10 +87,11 @@ LocalSurfaceFit::LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int ri
     SurfacePatch& p = patches_[v];
     p.support = Rings(mesh, v, rings, mark);
     const int m = static_cast<int>(p.support.size());
-    if (m < 7) {
+    if (m < function_terms + 1) {
       throw std::runtime_error("LocalSurfaceFit: vertex " + std::to_string(v) + " has " +
                                std::to_string(m - 1) + " neighbours within " +
-                               std::to_string(rings) + " rings (6 needed)");
+                               std::to_string(rings) + " rings (" + std::to_string(function_terms) +
+                               " needed)");
     }
     p.origin = x.col(v);
     p.n = normal.col(v).normalized();
@@ -68,27 +100,27 @@ LocalSurfaceFit::LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int ri
     double mean_square = 0;
     for (int j = 1; j < m; ++j) mean_square += (x.col(p.support[j]) - p.origin).squaredNorm();
     mean_square /= (m - 1);
-    // Height through the vertex: 5 unknowns over the neighbours.
-    Eigen::MatrixXd a(m - 1, 5);
+    // Height through the vertex over the neighbours; the function over the vertex and them.
+    Eigen::MatrixXd a(m - 1, height_terms);
     Eigen::VectorXd b(m - 1);
-    // Function: 6 unknowns over the vertex and its neighbours.
-    Eigen::MatrixXd af(m, 6);
+    Eigen::MatrixXd af(m, function_terms);
     Eigen::VectorXd weight_root(m);
     for (int j = 0; j < m; ++j) {
       const Eigen::Vector3d d = x.col(p.support[j]) - p.origin;
       const double u = d.dot(p.t1), w = d.dot(p.t2), h = d.dot(p.n);
       const double weight = 1.0 / (d.squaredNorm() + (j == 0 ? mean_square : 0.0));
       weight_root(j) = std::sqrt(weight);
-      af.row(j) << 1, u, w, u * u, u * w, w * w;
-      af.row(j) *= weight_root(j);
+      double basis[10];
+      Basis(u, w, basis);
+      for (int t = 0; t < function_terms; ++t) af(j, t) = basis[t] * weight_root(j);
       if (j > 0) {
-        a.row(j - 1) << u, w, u * u, u * w, w * w;
-        a.row(j - 1) *= weight;
+        for (int t = 0; t < height_terms; ++t) a(j - 1, t) = basis[t + 1] * weight;
         b(j - 1) = h * weight;
       }
     }
     const Eigen::VectorXd c = a.colPivHouseholderQr().solve(b);
-    for (int k = 0; k < 5; ++k) p.height[k] = c(k);
+    p.height.fill(0.0);
+    for (int k = 0; k < height_terms; ++k) p.height[k] = c(k);
     const double fu = c(0), fw = c(1);
     Eigen::Matrix2d first, hess;
     first << 1 + fu * fu, fu * fw, fu * fw, 1 + fw * fw;
@@ -96,7 +128,8 @@ LocalSurfaceFit::LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int ri
     p.curvature_sum = -(first.inverse() * hess).trace() / std::sqrt(1 + fu * fu + fw * fw);
     // function_fit = (W^1/2 A)^+ W^1/2: coefficients = function_fit * values(support).
     const Eigen::MatrixXd weights = weight_root.asDiagonal();
-    p.function_fit = af.colPivHouseholderQr().solve(weights);
+    p.function_fit = Eigen::MatrixXd::Zero(10, m);
+    p.function_fit.topRows(function_terms) = af.colPivHouseholderQr().solve(weights);
   }
 }
 
@@ -113,46 +146,47 @@ PatchFoot LocalSurfaceFit::Project(const Eigen::Vector3d& x) const {
   double u = d0.dot(p.t1), w = d0.dot(p.t2);
   Eigen::Vector3d xu, xw, r;
   for (int it = 0; it < 30; ++it) {
-    const double hu = c[0] + 2 * c[2] * u + c[3] * w, hw = c[1] + c[3] * u + 2 * c[4] * w;
-    const double huu = 2 * c[2], huw = c[3], hww = 2 * c[4];
-    r = x - (p.origin + u * p.t1 + w * p.t2 + Height(c, u, w) * p.n);
-    xu = p.t1 + hu * p.n;
-    xw = p.t2 + hw * p.n;
+    const HeightJet j = Height(c, u, w);
+    r = x - (p.origin + u * p.t1 + w * p.t2 + j.h * p.n);
+    xu = p.t1 + j.hu * p.n;
+    xw = p.t2 + j.hw * p.n;
     const double rn = r.dot(p.n);
     Eigen::Matrix2d jac;
-    jac << -xu.dot(xu) + rn * huu, -xu.dot(xw) + rn * huw, -xw.dot(xu) + rn * huw,
-        -xw.dot(xw) + rn * hww;
+    jac << -xu.dot(xu) + rn * j.huu, -xu.dot(xw) + rn * j.huw, -xw.dot(xu) + rn * j.huw,
+        -xw.dot(xw) + rn * j.hww;
     const Eigen::Vector2d residual(r.dot(xu), r.dot(xw));
     const Eigen::Vector2d step = jac.lu().solve(-residual);
     u += step(0);
     w += step(1);
     if (step.norm() < 1e-14 * (1 + std::abs(u) + std::abs(w))) break;
   }
-  const double hu = c[0] + 2 * c[2] * u + c[3] * w, hw = c[1] + c[3] * u + 2 * c[4] * w;
-  xu = p.t1 + hu * p.n;
-  xw = p.t2 + hw * p.n;
+  const HeightJet j = Height(c, u, w);
+  xu = p.t1 + j.hu * p.n;
+  xw = p.t2 + j.hw * p.n;
   foot.u = u;
   foot.w = w;
-  foot.point = p.origin + u * p.t1 + w * p.t2 + Height(c, u, w) * p.n;
+  foot.point = p.origin + u * p.t1 + w * p.t2 + j.h * p.n;
   foot.normal = xu.cross(xw).normalized();
   foot.signed_distance = (x - foot.point).dot(foot.normal);
   Eigen::Matrix2d first, hess;
-  first << 1 + hu * hu, hu * hw, hu * hw, 1 + hw * hw;
-  hess << 2 * c[2], c[3], c[3], 2 * c[4];
-  foot.curvature_sum = -(first.inverse() * hess).trace() / std::sqrt(1 + hu * hu + hw * hw);
-  foot.gaussian_curvature = hess.determinant() / std::pow(1 + hu * hu + hw * hw, 2);
+  first << 1 + j.hu * j.hu, j.hu * j.hw, j.hu * j.hw, 1 + j.hw * j.hw;
+  hess << j.huu, j.huw, j.huw, j.hww;
+  const double root = std::sqrt(1 + j.hu * j.hu + j.hw * j.hw);
+  foot.curvature_sum = -(first.inverse() * hess).trace() / root;
+  foot.gaussian_curvature = hess.determinant() / std::pow(root, 4);
   return foot;
 }
 
-std::array<double, 6> LocalSurfaceFit::FitFunction(int v, const std::vector<double>& values) const {
+std::array<double, 10> LocalSurfaceFit::FitFunction(int v,
+                                                    const std::vector<double>& values) const {
   if (static_cast<int>(values.size()) != mesh_.vertex_count()) {
     throw std::invalid_argument("LocalSurfaceFit: " + std::to_string(values.size()) +
                                 " values for " + std::to_string(mesh_.vertex_count()) +
                                 " vertices");
   }
   const SurfacePatch& p = patches_[v];
-  std::array<double, 6> a{};
-  for (int i = 0; i < 6; ++i) {
+  std::array<double, 10> a{};
+  for (int i = 0; i < 10; ++i) {
     double s = 0;
     for (std::size_t j = 0; j < p.support.size(); ++j)
       s += p.function_fit(i, j) * values[p.support[j]];
@@ -163,34 +197,52 @@ std::array<double, 6> LocalSurfaceFit::FitFunction(int v, const std::vector<doub
 
 double LocalSurfaceFit::Value(const PatchFoot& foot, const std::vector<double>& values) const {
   const auto a = FitFunction(foot.vertex, values);
-  const double u = foot.u, w = foot.w;
-  return a[0] + a[1] * u + a[2] * w + a[3] * u * u + a[4] * u * w + a[5] * w * w;
+  double basis[10];
+  Basis(foot.u, foot.w, basis);
+  double value = 0;
+  for (int i = 0; i < 10; ++i) value += a[i] * basis[i];
+  return value;
 }
 
 double LocalSurfaceFit::SurfaceLaplacian(const PatchFoot& foot,
                                          const std::vector<double>& values) const {
-  // At the vertex the frame is the tangent plane to O(h) and the Christoffel symbols of the graph
-  // vanish to the same order, so Delta_s F = F_uu + F_ww + O(h).
-  const auto a = FitFunction(foot.vertex, values);
-  return 2 * a[3] + 2 * a[5];
+  const std::vector<double> weights = SurfaceLaplacianWeights(foot);
+  const std::vector<int>& support = patches_[foot.vertex].support;
+  double out = 0;
+  for (std::size_t q = 0; q < support.size(); ++q) out += weights[q] * values[support[q]];
+  return out;
 }
 
 std::vector<double> LocalSurfaceFit::ValueWeights(const PatchFoot& foot) const {
   const SurfacePatch& p = patches_[foot.vertex];
-  const double u = foot.u, w = foot.w;
-  const double basis[6] = {1, u, w, u * u, u * w, w * w};
+  double basis[10];
+  Basis(foot.u, foot.w, basis);
   std::vector<double> out(p.support.size(), 0.0);
   for (std::size_t j = 0; j < out.size(); ++j) {
-    for (int i = 0; i < 6; ++i) out[j] += basis[i] * p.function_fit(i, j);
+    for (int i = 0; i < 10; ++i) out[j] += basis[i] * p.function_fit(i, j);
   }
   return out;
 }
 
-std::vector<double> LocalSurfaceFit::SurfaceLaplacianWeights(int v) const {
-  const SurfacePatch& p = patches_[v];
+std::vector<double> LocalSurfaceFit::SurfaceLaplacianWeights(const PatchFoot& foot) const {
+  const SurfacePatch& p = patches_[foot.vertex];
+  const double u = foot.u, w = foot.w;
+  const HeightJet j = Height(p.height, u, w);
+  const double q = 1 + j.hu * j.hu + j.hw * j.hw;
+  // Inverse metric of the graph: I - grad h grad h^T / q.
+  const double g11 = 1 - j.hu * j.hu / q, g12 = -j.hu * j.hw / q, g22 = 1 - j.hw * j.hw / q;
+  const double trace_h = g11 * j.huu + 2 * g12 * j.huw + g22 * j.hww;
   std::vector<double> out(p.support.size());
-  for (std::size_t j = 0; j < out.size(); ++j) {
-    out[j] = 2 * p.function_fit(3, j) + 2 * p.function_fit(5, j);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const auto a = [&](int i) { return p.function_fit(i, k); };
+    const double fu =
+        a(1) + 2 * a(3) * u + a(4) * w + 3 * a(6) * u * u + 2 * a(7) * u * w + a(8) * w * w;
+    const double fw =
+        a(2) + a(4) * u + 2 * a(5) * w + a(7) * u * u + 2 * a(8) * u * w + 3 * a(9) * w * w;
+    const double fuu = 2 * a(3) + 6 * a(6) * u + 2 * a(7) * w;
+    const double fuw = a(4) + 2 * a(7) * u + 2 * a(8) * w;
+    const double fww = 2 * a(5) + 2 * a(8) * u + 6 * a(9) * w;
+    out[k] = g11 * fuu + 2 * g12 * fuw + g22 * fww - trace_h * (j.hu * fu + j.hw * fw) / q;
   }
   return out;
 }

@@ -28,7 +28,10 @@
 //
 // Guarantees (SolverError naming the vertex or the quantity and the remedy): every vertex with
 // max(|kappa1|, |kappa2|) h <= max_curvature_h, every mesh edge <= max_edge_h * h (the jump data
-// live on the vertices), every fit with enough nodes; GMRES must converge.
+// live on the vertices), every fit with enough nodes; GMRES must converge; after the solve, the
+// cubic and the quadratic fits of phi_n^- must agree to max_fit_disagreement of max |phi_n| at
+// every vertex (where they do not, the potential varies on the grid scale near the surface and
+// the answer cannot be trusted).
 #pragma once
 
 #include <Eigen/Core>
@@ -65,6 +68,9 @@ struct FastIim3DOptions {
   double max_edge_h = 2.0;
   // sigma^-/sigma^+ above which the solve is refused (see the file comment).
   double max_inner_ratio = 10.0;
+  // After the solve, phi_n^- from the quadratic fit must agree with the cubic's to this fraction
+  // of max |phi_n^+-| at every vertex (a resolution check of the potential near the surface).
+  double max_fit_disagreement = 0.1;
 };
 
 class FastIimSolver3D {
@@ -97,14 +103,24 @@ class FastIimSolver3D {
   void GridField(const std::vector<double>& phi, std::vector<double>& ex, std::vector<double>& ey,
                  std::vector<double>& ez) const;
   const SurfaceClassification3D& classification() const { return sides_; }
+  // The normal-derivative operator alone, for testing it apart from the solve: phi_n^- at the
+  // vertices from given grid values phi and jumps [phi_n] = g (with the data of the last Solve(),
+  // whose surface it uses).
+  void EvaluateNormalDerivative(const std::vector<double>& phi, const std::vector<double>& g,
+                                std::vector<double>& dn_minus);
   const Grid3D& grid() const { return poisson_.grid(); }
   int poisson_solves() const { return poisson_solves_; }
   int band_nodes() const { return static_cast<int>(band_node_.size()); }
+  // The largest cubic/quadratic disagreement of phi_n^- of the last solve, relative to max
+  // |phi_n^+-| (FastIim3DOptions::max_fit_disagreement).
+  double fit_disagreement() const { return fit_disagreement_; }
 
  private:
   void CheckResolution(const TriangleMesh& surface) const;
   void SetUpBand(const TriangleMesh& surface);
   void SetUpFits(const TriangleMesh& surface);
+  // Throws SolverError above max_fit_disagreement.
+  void CheckFitAgreement(const std::vector<double>& phi, const std::vector<double>& g);
   // J at the band nodes for G (and the data part when with_data).
   void BandJump(const double* g, bool with_data);
   // Solves for phi, then phi_n^- at the vertices into dn.
@@ -135,7 +151,8 @@ class FastIimSolver3D {
   std::vector<int> fit_offset_;
   std::vector<std::size_t> fit_node_;
   std::vector<int> fit_slot_;
-  std::vector<double> fit_gamma_, fit_gamma_t1_, fit_gamma_t2_;
+  std::vector<double> fit_gamma_, fit_gamma_t1_, fit_gamma_t2_, fit_gamma_check_;
+  double fit_disagreement_ = 0;
   Eigen::Matrix3Xd fit_normal_, fit_t1_, fit_t2_;
   Eigen::Matrix3Xd tangent_minus_, tangent_plus_;
   std::vector<double> last_phi_side_jump_;  // J at the band nodes for the final G

@@ -18,6 +18,7 @@
 // other side.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -35,5 +36,19 @@ struct SurfaceClassification3D {
 // Throws std::invalid_argument if the surface does not lie inside the grid's box in x and y (a
 // column outside the box would go unclassified).
 SurfaceClassification3D ClassifyNodes(const Grid3D& grid, const TriangleMesh& surface);
+
+// A grid segment (between two neighbouring nodes along an axis) that the surface crosses twice
+// or more: a part of the surface thinner than h along that axis (a biconcave dimple), which the
+// 7-point stencil cannot see (both nodes are on the same side) and the immersed interface
+// corrections cannot represent. Only crossings where the line is within 60 degrees of the
+// surface normal count (a line grazing a curved sheet crosses it twice within a cell through a
+// harmless sliver). Of all such segments, the one with the closest crossings.
+struct MultipleCrossing {
+  bool found = false;
+  int axis = -1;              // 0, 1, 2: x, y, z
+  std::array<int, 3> node{};  // the segment from node to node + e_axis
+  double gap_h = 0;           // distance between its two crossings, in h
+};
+MultipleCrossing FindMultipleCrossing(const Grid3D& grid, const TriangleMesh& surface);
 
 }  // namespace ehd
