@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "ehd_capsule/electric/leaky_dielectric_solver_3d.h"
 #include "ehd_capsule/membrane/membrane_stability.h"
 
 namespace ehd {
@@ -54,8 +55,111 @@ void MembraneSurface3D::ResetTo(const Eigen::Matrix3Xd& positions) {
   elastic_force.setZero(3, n);
   bending_force.setZero(3, n);
   force.setZero(3, n);
+  electric_force.setZero(3, n);
+  electric_traction.setZero(3, n);
   initial_volume = EnclosedVolume(mesh);
   initial_area = SurfaceArea(mesh);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Electric stage: as the 2D ElectricStage2D (electric_stage.cpp), with the 3D solver; the
+// potential may be re-solved less often than every step (numerics.electric_every,
+// numerics.electric_move_tolerance), reusing the force at the (material) vertices in between.
+
+ElectricStage3D::ElectricStage3D(const Scene& scene, const LatticeUnits& units, const Grid3D& grid,
+                                 MembraneSurface3D& body)
+    : scene_(scene), body_(body) {
+  solver_ = std::make_unique<LeakyDielectricSolver3D>(grid, units.sigma_minus, units.sigma_plus,
+                                                      units.eps_minus, units.eps_plus);
+}
+
+ElectricStage3D::~ElectricStage3D() = default;
+
+std::string ElectricStage3D::Describe() const {
+  std::ostringstream out;
+  out << "3D fast IIM leaky dielectric, sigma-/sigma+ = " << scene_.sigma_r
+      << ", eps-/eps+ = " << scene_.eps_r << ", E_inf = (0, 0, -" << body_.field
+      << ") (phi = E z on the z faces, Neumann x, y: song2019 ch. 6), solved every "
+      << scene_.numerics.electric_every << " step(s)";
+  if (scene_.numerics.electric_move_tolerance > 0) {
+    out << " or after a move > " << scene_.numerics.electric_move_tolerance << " h";
+  }
+  out << ", force [M_E].n A_i per vertex";
+  return out.str();
+}
+
+void ElectricStage3D::Reset() {
+  const int n = body_.mesh.vertex_count();
+  body_.electric_force.setZero(3, n);
+  body_.electric_traction.setZero(3, n);
+  solver_->set_warm_start(LeakyDielectricSolver3D::WarmStart());
+  last_solve_step_ = -1;
+  solved_field_ = -1.0;
+}
+
+const std::vector<double>& ElectricStage3D::potential() const { return solver_->potential(); }
+
+void ElectricStage3D::Run(long step) {
+  SimulationState& state = *body_.state;
+  state.gmres_iterations = 0;
+  const int n = body_.mesh.vertex_count();
+  if (!(body_.field > 0.0)) {
+    body_.electric_force.setZero(3, n);
+    body_.electric_traction.setZero(3, n);
+    solved_field_ = 0.0;
+    return;
+  }
+  bool solve = last_solve_step_ < 0 || solved_field_ != body_.field ||
+               step - last_solve_step_ >= scene_.numerics.electric_every;
+  if (!solve && scene_.numerics.electric_move_tolerance > 0.0) {
+    const double tol = scene_.numerics.electric_move_tolerance;
+    solve = (body_.mesh.vertices() - vertices_at_last_solve_).colwise().squaredNorm().maxCoeff() >
+            tol * tol;
+  }
+  if (!solve) return;
+  solver_->SetAppliedField(body_.field);
+  InterfaceSolveReport report;
+  try {
+    report = solver_->Solve(body_.mesh, static_cast<double>(step));
+  } catch (const std::exception& e) {
+    FailStep(step, std::string("electric potential solve failed: ") + e.what());
+  }
+  state.gmres_iterations = report.iterations;
+  state.gmres_residual = report.residual;
+  body_.electric_force = solver_->force();
+  body_.electric_traction = solver_->traction();
+  vertices_at_last_solve_ = body_.mesh.vertices();
+  last_solve_step_ = step;
+  solved_field_ = body_.field;
+}
+
+void ElectricStage3D::Save(CheckpointWriter& w) const {
+  const LeakyDielectricSolver3D::WarmStart& h = solver_->warm_start();
+  w.Pod(solver_->applied_field());
+  w.Vec(h.g);
+  w.Vec(h.g_previous);
+  w.Pod(h.time_previous);
+  w.Pod(h.time_last);
+  w.Mat(body_.electric_force);
+  w.Mat(body_.electric_traction);
+  w.Mat(vertices_at_last_solve_);
+  w.Pod(last_solve_step_);
+  w.Pod(solved_field_);
+}
+
+void ElectricStage3D::Restore(CheckpointReader& r) {
+  solver_->SetAppliedField(r.Pod<double>());
+  LeakyDielectricSolver3D::WarmStart h;
+  h.g = r.Vec();
+  h.g_previous = r.Vec();
+  h.time_previous = r.Pod<double>();
+  h.time_last = r.Pod<double>();
+  solver_->set_warm_start(h);
+  body_.electric_force = r.Mat<3>();
+  body_.electric_traction = r.Mat<3>();
+  vertices_at_last_solve_ = r.Mat<3>();
+  last_solve_step_ = r.Pod<long>();
+  solved_field_ = r.Pod<double>();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -153,6 +257,7 @@ void MembraneStage3D::Run(long step) {
     for (int v = 0; v < body_.mesh.vertex_count(); ++v) {
       body_.force.col(v) = tension_ * g.vertex_area[v] * g.laplace_position.col(v);
     }
+    if (body_.electric_force.cols() == body_.force.cols()) body_.force += body_.electric_force;
     return;
   }
   try {
@@ -165,6 +270,7 @@ void MembraneStage3D::Run(long step) {
     bending_->ComputeForces(body_.mesh, body_.bending_force);
     body_.force += body_.bending_force;
   }
+  if (body_.electric_force.cols() == body_.force.cols()) body_.force += body_.electric_force;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -312,8 +418,9 @@ void MarkerStage3D::Restore(CheckpointReader& r) {
 // ---------------------------------------------------------------------------------------------
 
 DiagnosticsStage3D::DiagnosticsStage3D(const Scene& scene, const LatticeUnits& units,
-                                       MembraneSurface3D& body, const LatticeBoltzmann3D& fluid)
-    : scene_(scene), units_(units), body_(body), fluid_(fluid), tracker_(0) {}
+                                       MembraneSurface3D& body, const LatticeBoltzmann3D& fluid,
+                                       bool electric)
+    : scene_(scene), units_(units), body_(body), fluid_(fluid), electric_(electric), tracker_(0) {}
 
 std::string DiagnosticsStage3D::Describe() const {
   std::ostringstream out;
@@ -328,7 +435,12 @@ std::string DiagnosticsStage3D::Describe() const {
 void DiagnosticsStage3D::MeasureInto(const ShapeDiagnostics3D& d, SimulationState& s) const {
   s.dimension = 3;
   s.markers = body_.mesh.vertices();
-  s.electric_force.resize(3, 0);
+  if (electric_) {
+    s.electric_force = body_.electric_traction;
+    s.electric_force_total = body_.electric_force.rowwise().sum();
+  } else {
+    s.electric_force.resize(3, 0);
+  }
   s.dxy = d.dxy;
   s.inclination = d.inclination;
   s.area = d.volume;

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <sstream>
 
 #include "ehd_capsule/coupling/capsule_stages_2d.h"
@@ -61,6 +62,7 @@ struct Simulation::Impl {
   std::unique_ptr<MembraneSurface3D> surface;
   std::unique_ptr<ImmersedBoundary3D> ib3;
   std::unique_ptr<FluidStage3D> fluid3;
+  std::unique_ptr<ElectricStage3D> electric3;  // only with a field
   std::unique_ptr<MembraneStage3D> membrane3;
   std::unique_ptr<SpreadStage3D> spread3;
   std::unique_ptr<MarkerStage3D> markers3;
@@ -75,6 +77,7 @@ struct Simulation::Impl {
 
   bool three_d() const { return surface != nullptr; }
   double& shear_rate() { return surface ? surface->shear_rate : body.shear_rate; }
+  double& field() { return surface ? surface->field : body.field; }
   void ApplyShearRate() {
     if (fluid3) {
       fluid3->ApplyShearRate();
@@ -121,19 +124,31 @@ Simulation::Simulation(const Scene& scene) : scene_(scene), units_(DeriveLattice
     surface.mesh = InitialSurface(scene_, units_);
     surface.initial = surface.mesh.vertices();
     surface.shear_rate = units_.shear_rate;
+    surface.field = units_.field;
     m.fluid3 = std::make_unique<FluidStage3D>(scene_, units_, surface);
     grid3d_ = m.fluid3->lattice().grid();
+    if (scene_.electric_field) {
+      m.electric3 = std::make_unique<ElectricStage3D>(scene_, units_, grid3d_, surface);
+    }
     m.ib3 = std::make_unique<ImmersedBoundary3D>(
         grid3d_, std::array<bool, 3>{scene_.has_shear(), false, scene_.has_shear()});
     m.membrane3 = std::make_unique<MembraneStage3D>(scene_, units_, surface);
     m.spread3 = std::make_unique<SpreadStage3D>(*m.ib3, surface, m.fluid3->lattice());
     m.markers3 =
         std::make_unique<MarkerStage3D>(scene_, grid3d_, *m.ib3, surface, m.fluid3->lattice());
-    m.diagnostics3 =
-        std::make_unique<DiagnosticsStage3D>(scene_, units_, surface, m.fluid3->lattice());
-    m.stages = {m.membrane3.get(), m.spread3.get(), m.fluid3.get(), m.markers3.get(),
-                m.diagnostics3.get()};
-    m.not_built = {"electric (3D field not built yet)", "viscosity (V = 1)"};
+    m.diagnostics3 = std::make_unique<DiagnosticsStage3D>(
+        scene_, units_, surface, m.fluid3->lattice(), m.electric3 != nullptr);
+    if (m.electric3) {
+      m.stages.push_back(m.electric3.get());
+    } else {
+      m.not_built.push_back("electric (no field in the scene)");
+    }
+    for (StepStage* stage :
+         std::initializer_list<StepStage*>{m.membrane3.get(), m.spread3.get(), m.fluid3.get(),
+                                           m.markers3.get(), m.diagnostics3.get()}) {
+      m.stages.push_back(stage);
+    }
+    m.not_built.push_back("viscosity (V = 1)");
     Reset();
     return;
   }
@@ -193,11 +208,13 @@ void Simulation::Reset() {
   Impl& m = *impl_;
   if (m.three_d()) {
     m.surface->shear_rate = units_.shear_rate;
+    m.surface->field = units_.field;
     m.pending_ca = m.pending_ca_e = -1.0;
     m.surface->ResetTo(m.surface->initial);
     state_ = SimulationState();
     state_.dimension = 3;
     state_.ca = scene_.has_shear() ? scene_.Ca : 0.0;
+    state_.ca_e = scene_.electric_field ? scene_.Ca_E : 0.0;
     m.fluid3->Reset();
     for (StepStage* stage : m.stages) {
       if (stage != m.fluid3.get()) stage->Reset();
@@ -218,7 +235,9 @@ void Simulation::Reset() {
   }
 }
 
-bool Simulation::has_electric_field() const { return impl_->electric != nullptr; }
+bool Simulation::has_electric_field() const {
+  return impl_->electric != nullptr || impl_->electric3 != nullptr;
+}
 bool Simulation::has_bending() const { return scene_.has_bending(); }
 bool Simulation::has_viscosity_contrast() const { return impl_->viscosity != nullptr; }
 const std::vector<double>& Simulation::ux() const {
@@ -243,6 +262,7 @@ const std::vector<std::array<int, 3>>& Simulation::triangles() const {
   return impl_->three_d() ? impl_->surface->mesh.triangles() : impl_->no_triangles;
 }
 const std::vector<double>& Simulation::potential() const {
+  if (impl_->electric3) return impl_->electric3->potential();
   return impl_->electric ? impl_->electric->potential() : impl_->empty;
 }
 long Simulation::marker_redistributions() const {
@@ -255,7 +275,7 @@ void Simulation::SetCaE(double ca_e) {
     throw std::invalid_argument("Ca_E = " + FormatValue(ca_e) + " is out of range: accepted [0, " +
                                 FormatValue(max) + "] (electric.max_Ca_E)");
   }
-  if (ca_e > 0.0 && !impl_->electric) {
+  if (ca_e > 0.0 && !has_electric_field()) {
     throw std::invalid_argument("Ca_E = " + FormatValue(ca_e) +
                                 " needs the electric field, but scene " + scene_.name +
                                 " was built without it (accepted: 0; add an `electric:` block "
@@ -304,7 +324,7 @@ void Simulation::Step() {
     m.pending_ca = -1.0;
   }
   if (m.pending_ca_e >= 0.0) {
-    m.body.field = FieldForCaE(units_, m.pending_ca_e);
+    m.field() = FieldForCaE(units_, m.pending_ca_e);
     state_.ca_e = m.pending_ca_e;
     m.pending_ca_e = -1.0;
   }
@@ -384,7 +404,7 @@ void Simulation::Save(const std::string& path) const {
   w.Pod(state_.gmres_iterations);
   w.Pod(state_.gmres_residual);
   w.Pod(m.three_d() ? m.surface->shear_rate : m.body.shear_rate);
-  w.Pod(m.body.field);
+  w.Pod(m.three_d() ? m.surface->field : m.body.field);
   w.Pod(m.pending_ca);
   w.Pod(m.pending_ca_e);
   w.Section("markers positions");
@@ -424,7 +444,7 @@ void Simulation::Restore(const std::string& path) {
   s.gmres_iterations = r.Pod<int>();
   s.gmres_residual = r.Pod<double>();
   m.shear_rate() = r.Pod<double>();
-  m.body.field = r.Pod<double>();
+  m.field() = r.Pod<double>();
   m.pending_ca = r.Pod<double>();
   m.pending_ca_e = r.Pod<double>();
   r.ExpectSection("markers positions");

@@ -375,11 +375,6 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
   s.Ca_E = top.Number("Ca_E", Closed(0.0, 100.0), 0.0,
                       "electric capillary number eps+ a E^2 / " + tension);
   s.electric_field = s.Ca_E > 0.0 || electric_block;
-  if (three_d && s.electric_field) {
-    top.Fail(electric_block ? "'electric'" : "'Ca_E'",
-             "the 3D electric field is not built yet (dimension: 3 needs Ca_E = 0 and no "
-             "electric block)");
-  }
   {
     BlockReader e(top.Child("electric"), "electric", origin);
     s.electric.max_ca_e =

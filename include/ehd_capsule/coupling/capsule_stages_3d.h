@@ -1,6 +1,9 @@
-// The stages of the 3D coupled step (no electric field yet) of one capsule with a triangulated
-// membrane, and the surface data they share. Same contract as the 2D stages (step_stage.h):
-//   membrane     finite-element elastic forces (+ Helfrich bending) per vertex; for a drop the
+// The stages of the 3D coupled step of one capsule with a triangulated membrane, and the surface
+// data they share. Same contract as the 2D stages (step_stage.h):
+//   electric     3D fast IIM potential (E_inf along z, song2019 ch. 6) and the Maxwell force per
+//                vertex (only with a field)
+//   membrane     finite-element elastic forces (+ Helfrich bending) per vertex, plus the electric
+//                force; for a drop the
 //                surface tension gamma (Delta x)_i A_i = -2 gamma H_i n_i A_i (cotangent)
 //   spread       the vertex forces to the grid (eq. (106) with the 3D cosine delta)
 //   fluid        one D3Q19 MRT LBM step, walls y = +-L moving at +-k L, periodic in x and z
@@ -12,6 +15,7 @@
 #include <Eigen/Core>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "ehd_capsule/coupling/simulation_state.h"
 #include "ehd_capsule/coupling/step_stage.h"
@@ -34,6 +38,8 @@ struct MembraneSurface3D {
   Eigen::Matrix3Xd initial;  // the scene's initial shape
   Eigen::Matrix3Xd U;        // velocity interpolated this step
   Eigen::Matrix3Xd elastic_force, bending_force, force;  // per vertex (forces, not densities)
+  Eigen::Matrix3Xd electric_force, electric_traction;  // per vertex / per unit area (with a field)
+  double field = 0;                                    // |E_inf| in effect (lattice units)
   double initial_volume = 0;
   double initial_area = 0;  // surface area of the initial shape
   int tracked_vertex = 0;   // the material vertex whose angle is the tank-treading phase
@@ -41,6 +47,31 @@ struct MembraneSurface3D {
   SimulationState* state = nullptr;
 
   void ResetTo(const Eigen::Matrix3Xd& positions);
+};
+
+class LeakyDielectricSolver3D;
+
+class ElectricStage3D : public StepStage {
+ public:
+  // The electric grid is the lattice's (cell-centred nodes, the box faces half a cell out).
+  ElectricStage3D(const Scene& scene, const LatticeUnits& units, const Grid3D& grid,
+                  MembraneSurface3D& body);
+  ~ElectricStage3D() override;
+  const char* name() const override { return "electric"; }
+  std::string Describe() const override;
+  void Reset() override;
+  void Run(long step) override;
+  void Save(CheckpointWriter& out) const override;
+  void Restore(CheckpointReader& in) override;
+  const std::vector<double>& potential() const;
+
+ private:
+  const Scene& scene_;
+  MembraneSurface3D& body_;
+  std::unique_ptr<LeakyDielectricSolver3D> solver_;
+  Eigen::Matrix3Xd vertices_at_last_solve_;
+  long last_solve_step_ = -1;
+  double solved_field_ = -1.0;
 };
 
 class MembraneStage3D : public StepStage {
@@ -123,7 +154,7 @@ class MarkerStage3D : public StepStage {
 class DiagnosticsStage3D : public StepStage {
  public:
   DiagnosticsStage3D(const Scene& scene, const LatticeUnits& units, MembraneSurface3D& body,
-                     const LatticeBoltzmann3D& fluid);
+                     const LatticeBoltzmann3D& fluid, bool electric);
   const char* name() const override { return "diagnostics"; }
   std::string Describe() const override;
   void Reset() override;
@@ -137,6 +168,7 @@ class DiagnosticsStage3D : public StepStage {
   const LatticeUnits& units_;
   MembraneSurface3D& body_;
   const LatticeBoltzmann3D& fluid_;
+  bool electric_;
   TankTreadingTracker tracker_;
   double initial_min_angle_ = 0;  // of the initial mesh, for the degeneration watchdog
 };
