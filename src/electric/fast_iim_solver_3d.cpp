@@ -43,9 +43,8 @@ FastIimSolver3D::~FastIimSolver3D() = default;
 
 void FastIimSolver3D::CheckResolution(const TriangleMesh& surface) const {
   const double h = grid().h;
-  const FittedCurvatures curvature = FitCurvatures(surface, 2);
   for (int v = 0; v < surface.vertex_count(); ++v) {
-    const double kappa = std::max(std::abs(curvature.kappa1[v]), std::abs(curvature.kappa2[v]));
+    const double kappa = fit_->MaxCurvature(v);
     if (kappa * h > options_.max_curvature_h) {
       std::ostringstream os;
       os << "3D immersed interface: vertex " << v << " has curvature " << kappa
@@ -370,6 +369,7 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
     throw SolverError(os.str());
   }
   poisson_solves_ = 0;
+  fit_ = std::make_unique<LocalSurfaceFit>(surface, 2.0 * grid3.h, 2, 3, options_.threads);
   CheckResolution(surface);
   sides_ = ClassifyNodes(grid3, surface);
   const MultipleCrossing thin = FindMultipleCrossing(grid3, surface);
@@ -384,7 +384,6 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
        << "needs h below " << thin.gap_h * grid3.h << " there";
     throw SolverError(os.str());
   }
-  fit_ = std::make_unique<LocalSurfaceFit>(surface, grid3.h);
   SetUpBand(surface);
   SetUpFits(surface);
 

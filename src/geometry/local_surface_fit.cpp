@@ -1,6 +1,9 @@
 #include "ehd_capsule/geometry/local_surface_fit.h"
 
+#include <omp.h>
+
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -62,7 +65,8 @@ void Basis(double u, double w, double* b) {
 
 }  // namespace
 
-LocalSurfaceFit::LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int rings, int degree)
+LocalSurfaceFit::LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int rings, int degree,
+                                 int threads)
     : mesh_(mesh), projector_(mesh, bucket) {
   if (rings < 1 || rings > 4) {
     throw std::invalid_argument("LocalSurfaceFit: rings = " + std::to_string(rings) +
@@ -82,9 +86,30 @@ LocalSurfaceFit::LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int ri
     for (int k = 0; k < 3; ++k) normal.col(t[k]) += n;
   }
   patches_.resize(nv);
-  std::vector<int> mark(nv, -1);
-  for (int v = 0; v < nv; ++v) {
-    SurfacePatch& p = patches_[v];
+  // The patches are independent: threaded (OpenMP, threads <= 0: the default), each vertex's
+  // result the same whatever the thread count.
+  std::string error;
+#pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads()) if (threads != 1)
+  {
+    std::vector<int> mark(nv, -1);
+#pragma omp for schedule(dynamic, 64)
+    for (int v = 0; v < nv; ++v) {
+      try {
+        FitPatch(mesh, normal, v, rings, height_terms, function_terms, mark, patches_[v]);
+      } catch (const std::exception& e) {
+#pragma omp critical(local_surface_fit_error)
+        if (error.empty()) error = e.what();
+      }
+    }
+  }
+  if (!error.empty()) throw std::runtime_error(error);
+}
+
+void LocalSurfaceFit::FitPatch(const TriangleMesh& mesh, const Eigen::Matrix3Xd& normal, int v,
+                               int rings, int height_terms, int function_terms,
+                               std::vector<int>& mark, SurfacePatch& p) {
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  {
     p.support = Rings(mesh, v, rings, mark);
     const int m = static_cast<int>(p.support.size());
     if (m < function_terms + 1) {
@@ -126,11 +151,17 @@ LocalSurfaceFit::LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int ri
     first << 1 + fu * fu, fu * fw, fu * fw, 1 + fw * fw;
     hess << 2 * c(2), c(3), c(3), 2 * c(4);
     p.curvature_sum = -(first.inverse() * hess).trace() / std::sqrt(1 + fu * fu + fw * fw);
+    p.gaussian_curvature = hess.determinant() / std::pow(1 + fu * fu + fw * fw, 2);
     // function_fit = (W^1/2 A)^+ W^1/2: coefficients = function_fit * values(support).
     const Eigen::MatrixXd weights = weight_root.asDiagonal();
     p.function_fit = Eigen::MatrixXd::Zero(10, m);
     p.function_fit.topRows(function_terms) = af.colPivHouseholderQr().solve(weights);
   }
+}
+
+double LocalSurfaceFit::MaxCurvature(int v) const {
+  const double half = 0.5 * patches_[v].curvature_sum;
+  return std::abs(half) + std::sqrt(std::max(0.0, half * half - patches_[v].gaussian_curvature));
 }
 
 PatchFoot LocalSurfaceFit::Project(const Eigen::Vector3d& x) const {

@@ -71,6 +71,9 @@ struct FastIim3DOptions {
   // After the solve, phi_n^- from the quadratic fit must agree with the cubic's to this fraction
   // of max |phi_n^+-| at every vertex (a resolution check of the potential near the surface).
   double max_fit_disagreement = 0.1;
+  // OpenMP threads of the set-up (the per-vertex fits and the band rows; <= 0: the OpenMP
+  // default). The answer does not depend on it.
+  int threads = 0;
 };
 
 class FastIimSolver3D {

@@ -33,6 +33,7 @@ struct SurfacePatch {
   Eigen::Vector3d origin, t1, t2, n;  // the vertex and its frame
   std::array<double, 9> height{};     // c1..c9 (c6..c9 zero for degree 2)
   double curvature_sum = 0;           // kappa1 + kappa2 at the vertex (> 0 on a sphere)
+  double gaussian_curvature = 0;      // kappa1 kappa2 at the vertex
   std::vector<int> support;           // the vertex first, then its neighbours
   Eigen::MatrixXd function_fit;       // 10 x |support|: coefficients a = function_fit * values
 };
@@ -53,7 +54,12 @@ class LocalSurfaceFit {
   // about 18 vertices). degree 2 or 3. bucket: the cell size of the closest-triangle search
   // (about the grid spacing). Throws std::invalid_argument for a bad ring count or degree and
   // std::runtime_error for a vertex with too few neighbours.
-  LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int rings = 2, int degree = 3);
+  // threads: OpenMP threads for the per-vertex fits (<= 0: the OpenMP default; the result does
+  // not depend on it).
+  LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int rings = 2, int degree = 3,
+                  int threads = 0);
+  // The larger principal curvature magnitude at vertex v.
+  double MaxCurvature(int v) const;
 
   PatchFoot Project(const Eigen::Vector3d& x) const;
 
@@ -73,6 +79,9 @@ class LocalSurfaceFit {
   int vertex_count() const { return static_cast<int>(patches_.size()); }
 
  private:
+  static void FitPatch(const TriangleMesh& mesh, const Eigen::Matrix3Xd& normal, int v, int rings,
+                       int height_terms, int function_terms, std::vector<int>& mark,
+                       SurfacePatch& p);
   TriangleMesh mesh_;
   SurfaceProjector projector_;
   std::vector<SurfacePatch> patches_;
