@@ -372,6 +372,73 @@ FittedCurvatures FitCurvatures(const TriangleMesh& mesh, int rings) {
   return out;
 }
 
+std::vector<Eigen::Vector2d> CrossSectionZ(const TriangleMesh& mesh, double z0) {
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  const auto above = [&](int v) { return x(2, v) >= z0; };
+  const int ne = mesh.edge_count();
+  // Crossing point of each cut edge; per cut edge, the cut edges it is joined to through its
+  // two triangles (each triangle the plane cuts has exactly two cut edges).
+  std::vector<Eigen::Vector2d> point(ne);
+  std::vector<char> cut(ne, 0);
+  for (int e = 0; e < ne; ++e) {
+    const TriangleMesh::Edge& edge = mesh.edges()[e];
+    if (above(edge.a) == above(edge.b)) continue;
+    const double t = (z0 - x(2, edge.a)) / (x(2, edge.b) - x(2, edge.a));
+    point[e] = (x.col(edge.a) + t * (x.col(edge.b) - x.col(edge.a))).head<2>();
+    cut[e] = 1;
+  }
+  // Edge index of each triangle side, from the vertex pairs.
+  std::vector<std::array<int, 2>> links(ne, {-1, -1});
+  std::vector<std::vector<int>> vertex_edges(mesh.vertex_count());
+  for (int e = 0; e < ne; ++e) {
+    vertex_edges[mesh.edges()[e].a].push_back(e);
+    vertex_edges[mesh.edges()[e].b].push_back(e);
+  }
+  const auto edge_of = [&](int u, int v) {
+    for (int e : vertex_edges[u]) {
+      const TriangleMesh::Edge& edge = mesh.edges()[e];
+      if ((edge.a == u && edge.b == v) || (edge.a == v && edge.b == u)) return e;
+    }
+    return -1;
+  };
+  for (const auto& t : mesh.triangles()) {
+    int ends[2], n = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int e = edge_of(t[c], t[(c + 1) % 3]);
+      if (e >= 0 && cut[e] && n < 2) ends[n++] = e;
+    }
+    if (n != 2) continue;
+    for (int k = 0; k < 2; ++k) {
+      auto& l = links[ends[k]];
+      (l[0] < 0 ? l[0] : l[1]) = ends[1 - k];
+    }
+  }
+  std::vector<Eigen::Vector2d> best;
+  std::vector<char> used(ne, 0);
+  for (int start = 0; start < ne; ++start) {
+    if (!cut[start] || used[start]) continue;
+    std::vector<Eigen::Vector2d> loop;
+    int previous = -1, current = start;
+    while (current >= 0 && !used[current]) {
+      used[current] = 1;
+      loop.push_back(point[current]);
+      const auto& l = links[current];
+      const int next = l[0] != previous ? l[0] : l[1];
+      previous = current;
+      current = next;
+    }
+    if (loop.size() > best.size()) best = std::move(loop);
+  }
+  double area2 = 0;
+  for (std::size_t k = 0; k < best.size(); ++k) {
+    const Eigen::Vector2d& p = best[k];
+    const Eigen::Vector2d& q = best[(k + 1) % best.size()];
+    area2 += p.x() * q.y() - q.x() * p.y();
+  }
+  if (area2 < 0) std::reverse(best.begin(), best.end());
+  return best;
+}
+
 MeshQuality MeasureQuality(const TriangleMesh& mesh) {
   const Eigen::Matrix3Xd& x = mesh.vertices();
   MeshQuality q;

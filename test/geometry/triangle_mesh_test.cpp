@@ -267,3 +267,31 @@ TEST(TriangleMesh, QualityReport) {
 
 }  // namespace
 }  // namespace ehd
+
+namespace ehd {
+namespace {
+
+// The z-section of a sphere is the circle of radius sqrt(R^2 - z^2), counter-clockwise, one
+// point per cut edge; a plane that misses the surface gives nothing.
+TEST(CrossSectionZ, SphereSectionIsTheCircle) {
+  const TriangleMesh sphere = IcosphereMesh(4, 2.0);
+  for (const double z : {0.0, 0.7, -1.3}) {
+    const std::vector<Eigen::Vector2d> loop = CrossSectionZ(sphere, z);
+    ASSERT_GT(loop.size(), 20u) << z;
+    const double r = std::sqrt(4.0 - z * z);
+    double area2 = 0, worst = 0;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      worst = std::max(worst, std::abs(loop[k].norm() - r));
+      const Eigen::Vector2d& q = loop[(k + 1) % loop.size()];
+      area2 += loop[k].x() * q.y() - q.x() * loop[k].y();
+      EXPECT_LT((q - loop[k]).norm(), 0.5) << "consecutive points must be neighbours";
+    }
+    EXPECT_LT(worst, 0.01 * r) << z;  // chords of the flat triangles
+    EXPECT_GT(area2, 0) << "counter-clockwise";
+    EXPECT_NEAR(0.5 * area2, kPi * r * r, 0.01 * kPi * r * r) << z;
+  }
+  EXPECT_TRUE(CrossSectionZ(sphere, 2.5).empty());
+}
+
+}  // namespace
+}  // namespace ehd

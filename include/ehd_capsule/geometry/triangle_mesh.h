@@ -122,6 +122,12 @@ struct FittedCurvatures {
 };
 FittedCurvatures FitCurvatures(const TriangleMesh& mesh, int rings = 1);
 
+// The section of the surface by the plane z = z0 (the shear-plane cross-section the node draws):
+// the points where mesh edges cross the plane (a vertex on the plane counts as above it), chained
+// through the triangles into closed loops; the longest loop, counter-clockwise seen from +z, as
+// (x, y) points. Empty if the plane misses the surface.
+std::vector<Eigen::Vector2d> CrossSectionZ(const TriangleMesh& mesh, double z0);
+
 // Mesh quality: edge lengths, triangle angles, the largest aspect ratio circumradius /
 // (2 inradius) (1 for an equilateral triangle) and the vertex valences.
 struct MeshQuality {
