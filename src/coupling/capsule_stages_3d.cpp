@@ -446,6 +446,7 @@ void DiagnosticsStage3D::MeasureInto(const ShapeDiagnostics3D& d, SimulationStat
   s.area = d.volume;
   s.area_drift = d.volume / body_.initial_volume - 1.0;
   s.surface_drift = d.area / body_.initial_area - 1.0;
+  s.d_field = d.dz;
   s.tt_phase = tracker_.phase();
 }
 

@@ -52,6 +52,8 @@ ShapeDiagnostics3D MeasureShape3D(const TriangleMesh& mesh) {
   const int minor = major == first_in ? second_in : first_in;
   const double l = axes(major), b = axes(minor);
   d.dxy = (l + b) > 0 ? (l - b) / (l + b) : 0.0;
+  const double along = axes(out), across = 0.5 * (l + b);
+  d.dz = (along + across) > 0 ? (along - across) / (along + across) : 0.0;
   double theta = std::atan2(eig.eigenvectors()(1, major), eig.eigenvectors()(0, major));
   if (theta > M_PI / 2) theta -= M_PI;
   if (theta <= -M_PI / 2) theta += M_PI;

@@ -567,8 +567,12 @@ std::string DescribeScene(const Scene& s) {
   std::ostringstream out;
   out << "scene " << s.name << (s.description.empty() ? "" : ": " + s.description) << '\n';
   if (s.dimension == 3) {
-    out << "  3D: " << ToString(s.law) << " membrane";
-    if (s.law == SurfaceLawKind::kSkalak) out << " (C = " << s.area_dilation << ")";
+    if (s.membrane == MembraneKind::kDrop) {
+      out << "  3D: surface tension";
+    } else {
+      out << "  3D: " << ToString(s.law) << " membrane";
+      if (s.law == SurfaceLawKind::kSkalak) out << " (C = " << s.area_dilation << ")";
+    }
     out << ", mesh " << s.M << " vertices (subdivision " << s.mesh_subdivisions << ")";
     if (s.c0 != 0.0) out << ", c0 a = " << s.c0;
     out << '\n';

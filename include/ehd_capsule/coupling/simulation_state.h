@@ -22,6 +22,8 @@ struct SimulationState {
   double area_drift = 0;            // area / initial area - 1
   // Membrane length (2D) or surface area (3D) / its initial value - 1.
   double surface_drift = 0;
+  // 3D only: deformation along z, the axis of the field (ShapeDiagnostics3D::dz).
+  double d_field = 0;
   double tt_phase = 0;  // unwrapped angle of material point 0 about the centroid (rad)
   double ca = 0, ca_e = 0;
   int gmres_iterations = 0;

@@ -10,6 +10,9 @@
 // other two, in the shear plane (Ramanujan & Pozrikidis 1998; Lac et al. 2004):
 //   D_xy = (L - B)/(L + B) (L, B the larger and smaller of the two semi-axes), theta = the angle
 //   of the L axis's projection on x-y from +x, in (-pi/2, pi/2].
+// The deformation along z (the axis of song2019 ch. 6's field): D_z = (a_z - a_perp)/(a_z +
+// a_perp), a_z the semi-axis of the principal axis closest to z, a_perp the mean of the other two
+// (> 0: prolate along z, < 0 oblate; Taylor's D for a drop in a field along z).
 #pragma once
 
 #include <Eigen/Core>
@@ -23,6 +26,7 @@ struct ShapeDiagnostics3D {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   Eigen::Vector3d semi_axes = Eigen::Vector3d::Zero();  // of the equivalent ellipsoid, descending
   double dxy = 0, inclination = 0;                      // in the shear plane x-y
+  double dz = 0;                                        // along z
 };
 
 ShapeDiagnostics3D MeasureShape3D(const TriangleMesh& mesh);

@@ -25,7 +25,8 @@ class TimeSeriesCsv {
   std::ofstream out_;
 };
 
-// The header line (no newline).
-std::string TimeSeriesHeader();
+// The header line (no newline). 3D simulations add fe_z (the electric force's z component) and
+// d_field (the deformation along the field axis z).
+std::string TimeSeriesHeader(int dimension = 2);
 
 }  // namespace ehd
