@@ -8,10 +8,12 @@
 
 #include <boost/make_shared.hpp>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "ehd_capsule/ros/state_messages.h"
@@ -158,34 +160,47 @@ void CapsuleNode::ReadParameters() {
   }
   nh_.param("/use_sim_time", use_sim_time_, false);
 
-  // Scene overrides: ~set is a dictionary of top-level scene keys, e.g. {Ca: 0.1, N: 64}.
+  // Scene overrides: ~set is a dictionary of scene keys, e.g. {Ca: 0.1, N: 64}; a nested
+  // dictionary names a section's keys, {geometry: {half_width: 3}} = geometry.half_width=3.
   overrides_.clear();
   XmlRpc::XmlRpcValue set;
   if (pnh_.getParam("set", set)) {
     if (set.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
       throw std::invalid_argument("~set must be a dictionary of scene keys, e.g. {Ca: 0.1}");
     }
-    for (auto it = set.begin(); it != set.end(); ++it) {
-      std::ostringstream value;
-      XmlRpc::XmlRpcValue& v = it->second;
-      switch (v.getType()) {
-        case XmlRpc::XmlRpcValue::TypeDouble:
-          value << static_cast<double>(v);
-          break;
-        case XmlRpc::XmlRpcValue::TypeInt:
-          value << static_cast<int>(v);
-          break;
-        case XmlRpc::XmlRpcValue::TypeBoolean:
-          value << (static_cast<bool>(v) ? "true" : "false");
-          break;
-        case XmlRpc::XmlRpcValue::TypeString:
-          value << static_cast<std::string>(v);
-          break;
-        default:
-          throw std::invalid_argument("~set/" + it->first + ": only numbers, booleans and strings");
-      }
-      overrides_.push_back(it->first + "=" + value.str());
-    }
+    std::function<void(const std::string&, XmlRpc::XmlRpcValue&)> add_overrides =
+        [&](const std::string& prefix, XmlRpc::XmlRpcValue& dict) {
+          for (auto it = dict.begin(); it != dict.end(); ++it) {
+            const std::string key = prefix.empty() ? it->first : prefix + "." + it->first;
+            std::ostringstream value;
+            XmlRpc::XmlRpcValue& v = it->second;
+            switch (v.getType()) {
+              case XmlRpc::XmlRpcValue::TypeDouble: {
+                char text[32];  // shortest text that reads back as the same double
+                const auto end = std::to_chars(text, text + sizeof text, static_cast<double>(v));
+                value << std::string(text, end.ptr);
+                break;
+              }
+              case XmlRpc::XmlRpcValue::TypeInt:
+                value << static_cast<int>(v);
+                break;
+              case XmlRpc::XmlRpcValue::TypeBoolean:
+                value << (static_cast<bool>(v) ? "true" : "false");
+                break;
+              case XmlRpc::XmlRpcValue::TypeString:
+                value << static_cast<std::string>(v);
+                break;
+              case XmlRpc::XmlRpcValue::TypeStruct:
+                add_overrides(key, v);
+                continue;
+              default:
+                throw std::invalid_argument("~set/" + key +
+                                            ": only numbers, booleans, strings and dictionaries");
+            }
+            overrides_.push_back(key + "=" + value.str());
+          }
+        };
+    add_overrides("", set);
   }
   // ~start_Ca_E / ~start_Ca (the launch files' Ca_E and Ca arguments; < 0 or unset: the scene's
   // value) override the scene like ~set. Not ~Ca_E / ~Ca: those are dynamic_reconfigure's own
@@ -207,11 +222,6 @@ void CapsuleNode::ReadParameters() {
 
 void CapsuleNode::BuildSimulation() {
   scene_ = LoadScene(scene_name_, overrides_);
-  if (scene_.dimension == 3) {
-    throw SceneError("scene " + scene_.name +
-                     " is 3D: the node publishes 2D scenes so far (run 3D scenes with "
-                     "`ehd_sim run`)");
-  }
   sim_ = std::make_unique<Simulation>(scene_);
 }
 

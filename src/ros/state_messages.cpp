@@ -5,14 +5,56 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "ehd_capsule/geometry/triangle_mesh.h"
+
 namespace ehd::ros_node {
 namespace {
 
-geometry_msgs::Point ToPoint(double x, double y) {
+geometry_msgs::Point ToPoint(double x, double y, double z = 0.0) {
   geometry_msgs::Point p;
   p.x = x;
   p.y = y;
-  p.z = 0.0;
+  p.z = z;
+  return p;
+}
+
+// The shear plane x-y of the fluid grid: the 2D grid, or in 3D the node layer through the
+// capsule's centroid.
+struct ShearPlane {
+  int nx = 0, ny = 0;
+  double h = 1, x0 = 0, y0 = 0;
+  std::size_t offset = 0;  // flat index of node (0, 0) of the plane
+  int k = 0;               // 3D: the layer's z index
+  double z = 0;            // 3D: its z coordinate (lattice), 0 in 2D
+  std::size_t Index(int i, int j) const {
+    return offset + static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) +
+           static_cast<std::size_t>(i);
+  }
+  double X(int i) const { return x0 + (i + 0.5) * h; }
+  double Y(int j) const { return y0 + (j + 0.5) * h; }
+};
+
+ShearPlane PlaneOf(const Simulation& sim) {
+  ShearPlane p;
+  if (sim.state().dimension == 3) {
+    const Grid3D& g = sim.grid3d();
+    p.nx = g.nx;
+    p.ny = g.ny;
+    p.h = g.h;
+    p.x0 = g.x0;
+    p.y0 = g.y0;
+    const double zc = sim.state().markers.cols() > 0 ? sim.state().markers.row(2).mean() : 0.0;
+    p.k = std::min(g.nz - 1, std::max(0, static_cast<int>(std::floor((zc - g.z0) / g.h))));
+    p.offset = g.index(0, 0, p.k);
+    p.z = g.z(p.k);
+  } else {
+    const Grid2D& g = sim.grid();
+    p.nx = g.nx;
+    p.ny = g.ny;
+    p.h = g.h;
+    p.x0 = g.x0;
+    p.y0 = g.y0;
+  }
   return p;
 }
 
@@ -23,6 +65,21 @@ std_msgs::ColorRGBA Color(float r, float g, float b, float a = 1.0f) {
   c.b = b;
   c.a = a;
   return c;
+}
+
+// A dark-blue -> teal -> yellow ramp (viridis-like), v in [0, 1].
+std_msgs::ColorRGBA Ramp(double v) {
+  static const float stops[5][3] = {{0.27f, 0.00f, 0.33f},
+                                    {0.23f, 0.32f, 0.55f},
+                                    {0.13f, 0.57f, 0.55f},
+                                    {0.37f, 0.79f, 0.38f},
+                                    {0.99f, 0.91f, 0.14f}};
+  v = std::min(1.0, std::max(0.0, v)) * 4.0;
+  const int i = std::min(3, static_cast<int>(v));
+  const float t = static_cast<float>(v - i);
+  return Color(stops[i][0] + t * (stops[i + 1][0] - stops[i][0]),
+               stops[i][1] + t * (stops[i + 1][1] - stops[i][1]),
+               stops[i][2] + t * (stops[i + 1][2] - stops[i][2]), 0.85f);
 }
 
 visualization_msgs::Marker BaseMarker(const StateMessageSettings& settings, const ros::Time& stamp,
@@ -60,22 +117,31 @@ ehd_capsule::CapsuleState MakeCapsuleState(const Simulation& sim,
   msg.step = s.step;
   msg.time = s.time;
   msg.markers.reserve(s.markers.cols());
+  const bool three_d = s.dimension == 3;
   for (int k = 0; k < s.markers.cols(); ++k) {
-    msg.markers.push_back(ToPoint(s.markers(0, k) / a, s.markers(1, k) / a));
+    msg.markers.push_back(
+        ToPoint(s.markers(0, k) / a, s.markers(1, k) / a, three_d ? s.markers(2, k) / a : 0.0));
   }
   msg.electric_force.reserve(s.electric_force.cols());
   for (int k = 0; k < s.electric_force.cols(); ++k) {
     geometry_msgs::Vector3 f;
     f.x = s.electric_force(0, k) / fscale;
     f.y = s.electric_force(1, k) / fscale;
+    f.z = three_d ? s.electric_force(2, k) / fscale : 0.0;
     msg.electric_force.push_back(f);
   }
-  // The total is an integral of force density over length: force / (T) in units of T.
+  // The total is an integral of force density over length (2D: force / T) or over area (3D:
+  // force / (T a)).
   msg.electric_force_total.x = s.electric_force_total.x() / (fscale * a);
   msg.electric_force_total.y = s.electric_force_total.y() / (fscale * a);
+  msg.electric_force_total.z = three_d ? s.electric_force_total.z() / (fscale * a * a) : 0.0;
+  if (three_d) {
+    msg.electric_force_total.x /= a;
+    msg.electric_force_total.y /= a;
+  }
   msg.dxy = s.dxy;
   msg.inclination = s.inclination;
-  msg.area = s.area / (M_PI * a * a);
+  msg.area = three_d ? s.area / (4.0 / 3.0 * M_PI * a * a * a) : s.area / (M_PI * a * a);
   msg.area_drift = s.area_drift;
   msg.tt_phase = s.tt_phase;
   msg.ca_e = s.ca_e;
@@ -93,6 +159,19 @@ geometry_msgs::PolygonStamped MakeShape(const Simulation& sim, const StateMessag
   geometry_msgs::PolygonStamped poly;
   poly.header.frame_id = settings.frame_id;
   poly.header.stamp = stamp;
+  if (s.dimension == 3) {
+    // The cross-section in the shear plane through the centroid.
+    const double zc = s.markers.row(2).mean();
+    const TriangleMesh mesh(s.markers, sim.triangles());
+    for (const Eigen::Vector2d& q : CrossSectionZ(mesh, zc)) {
+      geometry_msgs::Point32 p;
+      p.x = static_cast<float>(q.x() / a);
+      p.y = static_cast<float>(q.y() / a);
+      p.z = static_cast<float>(zc / a);
+      poly.polygon.points.push_back(p);
+    }
+    return poly;
+  }
   poly.polygon.points.reserve(s.markers.cols());
   for (int k = 0; k < s.markers.cols(); ++k) {
     geometry_msgs::Point32 p;
@@ -112,23 +191,86 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
   const double fscale = LatticeForceDensityScale(sim);
   visualization_msgs::MarkerArray array;
 
-  // Membrane as a closed line strip.
+  const bool three_d = s.dimension == 3;
+  // Membrane as a closed line strip (3D: its cross-section in the shear plane).
   visualization_msgs::Marker membrane =
       BaseMarker(settings, stamp, "membrane", 0, visualization_msgs::Marker::LINE_STRIP);
   membrane.scale.x = 0.02;
   membrane.color = Color(0.1f, 0.4f, 0.9f);
-  for (int k = 0; k <= s.markers.cols(); ++k) {
-    const int kk = k % s.markers.cols();
-    membrane.points.push_back(ToPoint(s.markers(0, kk) / a, s.markers(1, kk) / a));
+  if (three_d) {
+    const geometry_msgs::PolygonStamped section = MakeShape(sim, settings, stamp);
+    for (std::size_t k = 0; k <= section.polygon.points.size() && !section.polygon.points.empty();
+         ++k) {
+      const auto& p = section.polygon.points[k % section.polygon.points.size()];
+      membrane.points.push_back(ToPoint(p.x, p.y, p.z + 0.01));
+    }
+    if (membrane.points.empty()) membrane.action = visualization_msgs::Marker::DELETE;
+  } else {
+    for (int k = 0; k <= s.markers.cols(); ++k) {
+      const int kk = k % s.markers.cols();
+      membrane.points.push_back(ToPoint(s.markers(0, kk) / a, s.markers(1, kk) / a));
+    }
   }
   array.markers.push_back(membrane);
+  if (three_d) {
+    // The surface as a shaded triangle list, coloured by the normal electric traction where
+    // there is a field (blue: pulled inwards, yellow: outwards), else one colour.
+    visualization_msgs::Marker surface =
+        BaseMarker(settings, stamp, "surface", 5, visualization_msgs::Marker::TRIANGLE_LIST);
+    surface.scale.x = surface.scale.y = surface.scale.z = 1.0;
+    surface.color = Color(0.55f, 0.7f, 0.95f, 0.9f);
+    const bool coloured = s.electric_force.cols() == s.markers.cols();
+    const Eigen::Vector3d centroid = s.markers.rowwise().mean();
+    std::vector<double> normal_traction;
+    double lo = 0, hi = 0;
+    if (coloured) {
+      normal_traction.resize(s.markers.cols());
+      for (int k = 0; k < s.markers.cols(); ++k) {
+        const Eigen::Vector3d n = (s.markers.col(k) - centroid).normalized();
+        normal_traction[k] = s.electric_force.col(k).dot(n);
+        lo = std::min(lo, normal_traction[k]);
+        hi = std::max(hi, normal_traction[k]);
+      }
+    }
+    for (const auto& t : sim.triangles()) {
+      for (int c = 0; c < 3; ++c) {
+        const int v = t[c];
+        surface.points.push_back(
+            ToPoint(s.markers(0, v) / a, s.markers(1, v) / a, s.markers(2, v) / a));
+        if (coloured) {
+          surface.colors.push_back(Ramp(hi > lo ? (normal_traction[v] - lo) / (hi - lo) : 0.5));
+        }
+      }
+    }
+    array.markers.push_back(surface);
+  }
 
   // Electric force arrows: one LINE_LIST segment per marker (a single marker keeps it cheap).
   visualization_msgs::Marker forces =
       BaseMarker(settings, stamp, "electric_force", 1, visualization_msgs::Marker::LINE_LIST);
   forces.scale.x = 0.01;
   forces.color = Color(0.9f, 0.2f, 0.1f);
-  for (int k = 0; k < s.electric_force.cols(); ++k) {
+  for (int k = 0; k < s.electric_force.cols() && three_d; ++k) {
+    // 3D: the shaft and a head of two strokes in the plane of the arrow and the radial
+    // direction from the centroid.
+    const Eigen::Vector3d x = s.markers.col(k) / a;
+    const Eigen::Vector3d d = settings.force_arrow_scale * s.electric_force.col(k) / fscale;
+    const double length = d.norm();
+    if (!(length > 1e-12)) continue;
+    forces.points.push_back(ToPoint(x.x(), x.y(), x.z()));
+    forces.points.push_back(ToPoint(x.x() + d.x(), x.y() + d.y(), x.z() + d.z()));
+    const Eigen::Vector3d u = d / length;
+    Eigen::Vector3d side = u.cross(s.markers.col(k) - s.markers.rowwise().mean());
+    side = side.norm() > 1e-12 ? side.normalized() : u.unitOrthogonal();
+    const Eigen::Vector3d tip = x + d;
+    for (double sign : {1.0, -1.0}) {
+      const Eigen::Vector3d end =
+          tip - 0.25 * length * (std::cos(0.4363) * u + sign * std::sin(0.4363) * side);
+      forces.points.push_back(ToPoint(tip.x(), tip.y(), tip.z()));
+      forces.points.push_back(ToPoint(end.x(), end.y(), end.z()));
+    }
+  }
+  for (int k = 0; k < s.electric_force.cols() && !three_d; ++k) {
     const double x = s.markers(0, k) / a, y = s.markers(1, k) / a;
     const double dx = settings.force_arrow_scale * s.electric_force(0, k) / fscale;
     const double dy = settings.force_arrow_scale * s.electric_force(1, k) / fscale;
@@ -156,16 +298,20 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
         BaseMarker(settings, stamp, "velocity", 2, visualization_msgs::Marker::LINE_LIST);
     vel.scale.x = 0.01;
     vel.color = Color(0.3f, 0.3f, 0.3f, 0.8f);
-    const Grid2D& g = sim.grid();
+    const ShearPlane g = PlaneOf(sim);
     const auto& ux = sim.ux();
     const auto& uy = sim.uy();
     double umax = 0.0;
-    for (std::size_t n = 0; n < ux.size(); ++n) umax = std::max(umax, std::hypot(ux[n], uy[n]));
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) {
+        umax = std::max(umax, std::hypot(ux[g.Index(i, j)], uy[g.Index(i, j)]));
+      }
+    }
     const double cell = settings.velocity_stride * g.h / a;  // arrow of the fastest = one cell
     for (int j = settings.velocity_stride / 2; j < g.ny; j += settings.velocity_stride) {
       for (int i = settings.velocity_stride / 2; i < g.nx; i += settings.velocity_stride) {
-        const std::size_t n = g.index(i, j);
-        const double x = g.x(i) / a, y = g.y(j) / a;
+        const std::size_t n = g.Index(i, j);
+        const double x = g.X(i) / a, y = g.Y(j) / a;
         const double sx = umax > 0.0 ? ux[n] / umax * cell : 0.0;
         const double sy = umax > 0.0 ? uy[n] / umax * cell : 0.0;
         vel.points.push_back(ToPoint(x, y));
@@ -175,9 +321,11 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
     array.markers.push_back(vel);
   }
 
-  // The walls: y = +-L moving (shear), or the whole closed box.
-  const double half = 0.5 * sim.grid().ny * sim.grid().h / a;
-  const double half_x = 0.5 * sim.grid().nx * sim.grid().h / a;
+  // The walls: y = +-L moving (shear), or the whole closed box (3D: their traces in the shear
+  // plane).
+  const ShearPlane plane = PlaneOf(sim);
+  const double half = 0.5 * plane.ny * plane.h / a;
+  const double half_x = 0.5 * plane.nx * plane.h / a;
   visualization_msgs::Marker walls =
       BaseMarker(settings, stamp, "walls", 4, visualization_msgs::Marker::LINE_LIST);
   walls.scale.x = 0.04;
@@ -201,9 +349,16 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
   text.scale.z = 0.22;
   text.color = Color(1.0f, 1.0f, 1.0f);
   char line[240];
-  std::snprintf(line, sizeof(line),
-                "step %ld   t = %.3f\nD_xy = %.4f   theta/pi = %.4f   Ca = %.4g   Ca_E = %.4g",
-                s.step, s.time, s.dxy, s.inclination / M_PI, s.ca, s.ca_e);
+  if (three_d) {
+    std::snprintf(line, sizeof(line),
+                  "step %ld   t = %.3f\nD_xy = %.4f   theta/pi = %.4f   D_z = %.4f   Ca = %.4g   "
+                  "Ca_E = %.4g",
+                  s.step, s.time, s.dxy, s.inclination / M_PI, s.d_field, s.ca, s.ca_e);
+  } else {
+    std::snprintf(line, sizeof(line),
+                  "step %ld   t = %.3f\nD_xy = %.4f   theta/pi = %.4f   Ca = %.4g   Ca_E = %.4g",
+                  s.step, s.time, s.dxy, s.inclination / M_PI, s.ca, s.ca_e);
+  }
   text.text = line;
   array.markers.push_back(text);
   return array;
@@ -232,25 +387,6 @@ FieldLayer ParseFieldLayer(const std::string& text, const Simulation& sim) {
   return layer;
 }
 
-namespace {
-
-// A dark-blue -> teal -> yellow ramp (viridis-like), v in [0, 1].
-std_msgs::ColorRGBA Ramp(double v) {
-  static const float stops[5][3] = {{0.27f, 0.00f, 0.33f},
-                                    {0.23f, 0.32f, 0.55f},
-                                    {0.13f, 0.57f, 0.55f},
-                                    {0.37f, 0.79f, 0.38f},
-                                    {0.99f, 0.91f, 0.14f}};
-  v = std::min(1.0, std::max(0.0, v)) * 4.0;
-  const int i = std::min(3, static_cast<int>(v));
-  const float t = static_cast<float>(v - i);
-  return Color(stops[i][0] + t * (stops[i + 1][0] - stops[i][0]),
-               stops[i][1] + t * (stops[i + 1][1] - stops[i][1]),
-               stops[i][2] + t * (stops[i + 1][2] - stops[i][2]), 0.85f);
-}
-
-}  // namespace
-
 visualization_msgs::MarkerArray MakeFieldLayer(const Simulation& sim, FieldLayer layer, int stride,
                                                const StateMessageSettings& settings,
                                                const ros::Time& stamp) {
@@ -262,29 +398,40 @@ visualization_msgs::MarkerArray MakeFieldLayer(const Simulation& sim, FieldLayer
     array.markers.push_back(cells);
     return array;
   }
-  const Grid2D& g = sim.grid();
+  const ShearPlane g = PlaneOf(sim);
+  const bool three_d = sim.state().dimension == 3;
   const double a = LatticeRadius(sim);
   stride = std::max(1, stride);
-  // The quantity per node.
-  std::vector<double> q(g.size());
+  // The quantity per node of the plane (index j nx + i).
+  const auto at = [&g](int i, int j) { return static_cast<std::size_t>(j) * g.nx + i; };
+  std::vector<double> q(static_cast<std::size_t>(g.nx) * g.ny);
   double scale = 1.0;
   const char* name = "";
   if (layer == FieldLayer::kSpeed) {
     const auto& ux = sim.ux();
     const auto& uy = sim.uy();
-    for (std::size_t n = 0; n < q.size(); ++n) q[n] = std::hypot(ux[n], uy[n]);
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) {
+        const std::size_t n = g.Index(i, j);
+        q[at(i, j)] = three_d ? std::sqrt(ux[n] * ux[n] + uy[n] * uy[n] + sim.uz()[n] * sim.uz()[n])
+                              : std::hypot(ux[n], uy[n]);
+      }
+    }
     scale = sim.units().wall_speed > 0.0 ? sim.units().wall_speed : 1.0;
     name = sim.units().wall_speed > 0.0 ? "|u| / kL" : "|u| (lattice)";
   } else {
     const auto& phi = sim.potential();
-    if (phi.size() != g.size()) {
+    const std::size_t expected = three_d ? sim.grid3d().size() : sim.grid().size();
+    if (phi.size() != expected) {
       // No potential yet (before the first solve, or Ca_E = 0): nothing to colour.
       cells.action = visualization_msgs::Marker::DELETE;
       array.markers.push_back(cells);
       return array;
     }
     if (layer == FieldLayer::kPotential) {
-      q = phi;
+      for (int j = 0; j < g.ny; ++j) {
+        for (int i = 0; i < g.nx; ++i) q[at(i, j)] = phi[g.Index(i, j)];
+      }
       scale = sim.units().field * a;  // |E_inf| a
       name = "phi / (E_inf a)";
     } else {
@@ -292,9 +439,16 @@ visualization_msgs::MarkerArray MakeFieldLayer(const Simulation& sim, FieldLayer
         for (int i = 0; i < g.nx; ++i) {
           const int il = std::max(0, i - 1), ir = std::min(g.nx - 1, i + 1);
           const int jl = std::max(0, j - 1), jr = std::min(g.ny - 1, j + 1);
-          const double ex = (phi[g.index(ir, j)] - phi[g.index(il, j)]) / ((ir - il) * g.h);
-          const double ey = (phi[g.index(i, jr)] - phi[g.index(i, jl)]) / ((jr - jl) * g.h);
-          q[g.index(i, j)] = std::hypot(ex, ey);
+          const double ex = (phi[g.Index(ir, j)] - phi[g.Index(il, j)]) / ((ir - il) * g.h);
+          const double ey = (phi[g.Index(i, jr)] - phi[g.Index(i, jl)]) / ((jr - jl) * g.h);
+          double ez = 0;
+          if (three_d) {
+            // Across the plane: the layers above and below (one-sided at the box faces).
+            const Grid3D& g3 = sim.grid3d();
+            const int kl = std::max(0, g.k - 1), kr = std::min(g3.nz - 1, g.k + 1);
+            ez = (phi[g3.index(i, j, kr)] - phi[g3.index(i, j, kl)]) / ((kr - kl) * g.h);
+          }
+          q[at(i, j)] = std::sqrt(ex * ex + ey * ey + ez * ez);
         }
       }
       scale = sim.units().field > 0.0 ? sim.units().field : 1.0;
@@ -311,7 +465,7 @@ visualization_msgs::MarkerArray MakeFieldLayer(const Simulation& sim, FieldLayer
       int count = 0;
       for (int j = j0; j < std::min(g.ny, j0 + stride); ++j) {
         for (int i = i0; i < std::min(g.nx, i0 + stride); ++i) {
-          sum += q[g.index(i, j)];
+          sum += q[at(i, j)];
           ++count;
         }
       }
@@ -322,7 +476,7 @@ visualization_msgs::MarkerArray MakeFieldLayer(const Simulation& sim, FieldLayer
       geometry_msgs::Point p;
       p.x = (g.x0 + (i0 + 0.5 * std::min(stride, g.nx - i0)) * g.h) / a;
       p.y = (g.y0 + (j0 + 0.5 * std::min(stride, g.ny - j0)) * g.h) / a;
-      p.z = -0.05;  // under the shape and arrows
+      p.z = g.z / a - 0.05;  // under the shape and arrows
       centres.push_back(p);
     }
   }
