@@ -447,6 +447,11 @@ void DiagnosticsStage3D::MeasureInto(const ShapeDiagnostics3D& d, SimulationStat
   s.area_drift = d.volume / body_.initial_volume - 1.0;
   s.surface_drift = d.area / body_.initial_area - 1.0;
   s.d_field = d.dz;
+  // body_.U: the vertex velocities of the last marker step (lattice units), none before it.
+  s.surface_flow = body_.U.cols() == body_.mesh.vertex_count()
+                       ? MeasureMeridionalFlow(body_.mesh, body_.U, d.centroid) *
+                             units_.steps_per_time_unit / units_.radius
+                       : 0.0;
   s.tt_phase = tracker_.phase();
 }
 

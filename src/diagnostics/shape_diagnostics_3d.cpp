@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace ehd {
 
@@ -61,6 +62,39 @@ ShapeDiagnostics3D MeasureShape3D(const TriangleMesh& mesh) {
   std::sort(axes.data(), axes.data() + 3, [](double u, double v) { return u > v; });
   d.semi_axes = axes;
   return d;
+}
+
+double MeasureMeridionalFlow(const TriangleMesh& mesh, const Eigen::Matrix3Xd& velocity,
+                             const Eigen::Vector3d& centroid) {
+  const int n = mesh.vertex_count();
+  if (velocity.cols() != n) {
+    throw std::invalid_argument("MeasureMeridionalFlow: " + std::to_string(velocity.cols()) +
+                                " velocities for " + std::to_string(n) + " vertices");
+  }
+  // Vertex areas: a third of each triangle's (enough for a weight; the mixed Voronoi areas of
+  // MeasureSurface cost a cotangent pass).
+  std::vector<double> area(n, 0.0);
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  for (const auto& t : mesh.triangles()) {
+    const double third = (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0])).norm() / 6.0;
+    for (int v : t) area[v] += third;
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double total = 0.0;
+  for (int i = 0; i < n; ++i) {
+    mean += area[i] * velocity.col(i);
+    total += area[i];
+  }
+  mean /= total;
+  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  double num = 0.0, den = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d r = (x.col(i) - centroid).normalized();
+    const double c = r.z(), s2 = 1.0 - c * c;
+    num += area[i] * c * (velocity.col(i) - mean).dot(r * c - z);
+    den += area[i] * s2 * c * c;
+  }
+  return den > 0.0 ? num / den : 0.0;
 }
 
 }  // namespace ehd

@@ -44,5 +44,29 @@ TEST(ShapeDiagnostics3D, ProlateAlongZIsNotAShearPlaneDeformation) {
   EXPECT_NEAR(d.semi_axes(0), 1.5, 1e-2);
 }
 
+// u = U sin(theta) cos(theta) e_theta about an off-origin centroid, plus a drift and a rigid
+// rotation about z (neither has a meridional component): U is recovered to the quadrature error
+// of the mesh, and reversing the flow reverses the sign.
+TEST(ShapeDiagnostics3D, MeridionalFlowAmplitudeAndSign) {
+  const Eigen::Vector3d c(1.0, -2.0, 0.5);
+  TriangleMesh mesh = IcosphereMesh(4, 2.0);
+  Eigen::Matrix3Xd x = mesh.vertices();
+  x.colwise() += c;
+  mesh.SetVertices(x);
+  const double amplitude = 0.37;
+  Eigen::Matrix3Xd u(3, mesh.vertex_count());
+  for (int i = 0; i < mesh.vertex_count(); ++i) {
+    const Eigen::Vector3d r = (x.col(i) - c).normalized();
+    const double cos_t = r.z();
+    const Eigen::Vector3d sin_e_theta = r * cos_t - Eigen::Vector3d::UnitZ();
+    u.col(i) = amplitude * cos_t * sin_e_theta + Eigen::Vector3d(0.2, -0.1, 0.05) +
+               0.8 * Eigen::Vector3d::UnitZ().cross(x.col(i) - c);
+  }
+  EXPECT_NEAR(MeasureMeridionalFlow(mesh, u, c), amplitude, 1e-3 * amplitude);
+  Eigen::Matrix3Xd reversed = -u;
+  EXPECT_NEAR(MeasureMeridionalFlow(mesh, reversed, c), -amplitude, 1e-3 * amplitude);
+  EXPECT_THROW(MeasureMeridionalFlow(mesh, Eigen::Matrix3Xd::Zero(3, 3), c), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace ehd

@@ -24,6 +24,9 @@ struct SimulationState {
   double surface_drift = 0;
   // 3D only: deformation along z, the axis of the field (ShapeDiagnostics3D::dz).
   double d_field = 0;
+  // 3D only: amplitude of the meridional surface flow about the field axis z, in a per time unit
+  // (MeasureMeridionalFlow; > 0 from the poles to the equator).
+  double surface_flow = 0;
   double tt_phase = 0;  // unwrapped angle of material point 0 about the centroid (rad)
   double ca = 0, ca_e = 0;
   int gmres_iterations = 0;

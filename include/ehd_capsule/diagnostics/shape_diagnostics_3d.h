@@ -31,4 +31,15 @@ struct ShapeDiagnostics3D {
 
 ShapeDiagnostics3D MeasureShape3D(const TriangleMesh& mesh);
 
+// Amplitude U of the meridional surface flow u_theta = U sin(theta) cos(theta) about the z axis
+// through the centroid (theta the polar angle from +z): the P2 circulation of a drop in a field
+// along z (Taylor 1966). Least squares over the vertices, weighted by their areas, of the
+// velocities relative to the area-weighted mean (the drift of the drop):
+//   U = sum A_i cos(theta_i) (u_i - u_mean).(r_i cos(theta_i) - z) / sum A_i sin^2 cos^2,
+// with sin(theta) e_theta = r cos(theta) - z (r the unit radial vector), so no division by
+// sin(theta) at the poles. U > 0: the surface flows from the poles to the equator. Units of
+// the velocities given. velocity: 3 x V.
+double MeasureMeridionalFlow(const TriangleMesh& mesh, const Eigen::Matrix3Xd& velocity,
+                             const Eigen::Vector3d& centroid);
+
 }  // namespace ehd

@@ -25,8 +25,9 @@ class TimeSeriesCsv {
   std::ofstream out_;
 };
 
-// The header line (no newline). 3D simulations add fe_z (the electric force's z component) and
-// d_field (the deformation along the field axis z).
+// The header line (no newline). 3D simulations add fe_z (the electric force's z component),
+// d_field (the deformation along the field axis z) and surface_flow (the meridional surface
+// flow about z, a per time unit, > 0 from the poles to the equator).
 std::string TimeSeriesHeader(int dimension = 2);
 
 }  // namespace ehd
