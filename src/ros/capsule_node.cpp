@@ -26,6 +26,7 @@ CapsuleNode::CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   BuildSimulation();
   field_layer_ = ParseFieldLayer(field_layer_name_, *sim_);
   if (field_stride_ == 0) field_stride_ = std::max(1, sim_->scene().N / 64);
+  if (markers_every_ == 0) markers_every_ = sim_->dimension() == 3 ? 10 : 1;
 
   state_pub_ = pnh_.advertise<ehd_capsule::CapsuleState>("state", 1000);
   throttled_pub_ = pnh_.advertise<ehd_capsule::CapsuleState>("state_throttled", 10);
@@ -36,6 +37,10 @@ CapsuleNode::CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 10);
   scene_pub_ = pnh_.advertise<std_msgs::String>("scene", 1, /*latch=*/true);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
+  if (sim_->dimension() == 3) {
+    surface_mesh_pub_ = pnh_.advertise<ehd_capsule::SurfaceMesh>("surface_mesh", 1, /*latch=*/true);
+    surface_state_pub_ = pnh_.advertise<ehd_capsule::SurfaceState>("surface_state", 1000);
+  }
   if (use_sim_time_ && publish_clock_) {
     clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 100);
   }
@@ -63,6 +68,7 @@ CapsuleNode::CapsuleNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   scene_pub_.publish(scene_msg);
   OpenBag();
   Record("scene", scene_msg, StampNow());
+  PublishSurfaceMesh();
 
   ROS_INFO_STREAM("ehd_capsule: scene '" << scene_name_ << "'\n"
                                          << DescribeUnits(scene_, sim_->units())
@@ -106,6 +112,13 @@ void CapsuleNode::ReadParameters() {
   if (publish_every_ < 1) {
     throw std::invalid_argument("~publish_every must be >= 1 (got " +
                                 std::to_string(publish_every_) + ")");
+  }
+  pnh_.param("markers_every", markers_every_, 0);
+  if (markers_every_ < 0) {
+    throw std::invalid_argument(
+        "~markers_every must be >= 1, or 0 for the default (1 in 2D, 10 "
+        "in 3D); got " +
+        std::to_string(markers_every_));
   }
   pnh_.param<std::string>("frame_id", frame_id_, "ehd");
   pnh_.param("force_arrow_scale", force_arrow_scale_, 1.0);
@@ -409,6 +422,7 @@ void CapsuleNode::ApplyPendingRequests() {
     pending_reset_ = false;
     sim_->Reset();
     advance_remaining_ = 0;
+    states_since_markers_ = 0;
     if (run_state_ == RunState::kFailed || run_state_ == RunState::kFinished) {
       run_state_ = config_.paused ? RunState::kPaused : RunState::kRunning;
       failure_.clear();
@@ -437,6 +451,7 @@ void CapsuleNode::ApplyPendingRequests() {
         ROS_ERROR("ehd_capsule: cannot record after the reset: %s", e.what());
       }
     }
+    PublishSurfaceMesh();
   }
   const long next_step = sim_->state().step + 1;
   if (pending_ca_e_) {
@@ -581,16 +596,34 @@ void CapsuleNode::PublishState() {
                                       velocity_stride_};
   const ehd_capsule::CapsuleState state = MakeCapsuleState(*sim_, settings, stamp);
   const geometry_msgs::PolygonStamped shape = MakeShape(*sim_, settings, stamp);
-  const visualization_msgs::MarkerArray markers = MakeMarkerArray(*sim_, settings, stamp);
   state_pub_.publish(state);
   shape_pub_.publish(shape);
-  markers_pub_.publish(markers);
   ++published_states_;
   if (bag_open_) {
     Record("state", state, stamp);
     Record("shape", shape, stamp);
-    Record("markers", markers, stamp);
   }
+  if (sim_->dimension() == 3) {
+    const ehd_capsule::SurfaceState surface = MakeSurfaceState(*sim_, settings, stamp);
+    surface_state_pub_.publish(surface);
+    if (bag_open_) Record("surface_state", surface, stamp);
+  }
+  // The marker array with the first state and every markers_every-th after it.
+  if (states_since_markers_ == 0) {
+    const visualization_msgs::MarkerArray markers = MakeMarkerArray(*sim_, settings, stamp);
+    markers_pub_.publish(markers);
+    if (bag_open_) Record("markers", markers, stamp);
+  }
+  if (++states_since_markers_ >= markers_every_) states_since_markers_ = 0;
+}
+
+void CapsuleNode::PublishSurfaceMesh() {
+  if (sim_->dimension() != 3) return;
+  const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
+                                      velocity_stride_};
+  const ehd_capsule::SurfaceMesh mesh = MakeSurfaceMesh(*sim_, settings, StampNow());
+  surface_mesh_pub_.publish(mesh);
+  Record("surface_mesh", mesh, StampNow());
 }
 
 void CapsuleNode::PublishDiagnostics(bool force) {

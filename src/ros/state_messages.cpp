@@ -152,6 +152,35 @@ ehd_capsule::CapsuleState MakeCapsuleState(const Simulation& sim,
   return msg;
 }
 
+ehd_capsule::SurfaceMesh MakeSurfaceMesh(const Simulation& sim,
+                                         const StateMessageSettings& settings,
+                                         const ros::Time& stamp) {
+  if (sim.dimension() != 3) throw std::logic_error("MakeSurfaceMesh: a 3D simulation only");
+  ehd_capsule::SurfaceMesh msg;
+  msg.header.frame_id = settings.frame_id;
+  msg.header.stamp = stamp;
+  msg.vertex_count = static_cast<int>(sim.state().markers.cols());
+  const auto& triangles = sim.triangles();
+  msg.triangles.reserve(3 * triangles.size());
+  for (const auto& t : triangles) msg.triangles.insert(msg.triangles.end(), t.begin(), t.end());
+  return msg;
+}
+
+ehd_capsule::SurfaceState MakeSurfaceState(const Simulation& sim,
+                                           const StateMessageSettings& settings,
+                                           const ros::Time& stamp) {
+  if (sim.dimension() != 3) throw std::logic_error("MakeSurfaceState: a 3D simulation only");
+  const SimulationState& s = sim.state();
+  ehd_capsule::SurfaceState msg;
+  msg.header.frame_id = settings.frame_id;
+  msg.header.stamp = stamp;
+  msg.step = s.step;
+  msg.surface_drift = s.surface_drift;
+  msg.d_field = s.d_field;
+  msg.surface_flow = s.surface_flow;
+  return msg;
+}
+
 geometry_msgs::PolygonStamped MakeShape(const Simulation& sim, const StateMessageSettings& settings,
                                         const ros::Time& stamp) {
   const SimulationState& s = sim.state();

@@ -10,6 +10,9 @@
 - Ca_E changed through dynamic_reconfigure while the node runs (0.3 -> 0.6) shows in the
   states, and the electric force, linear in Ca_E = eps E^2 a / gamma, doubles (within 5 %:
   the drop moves a little between the two solves);
+- the triangles once in the bag (SurfaceMesh: 1280 triangles on the 642 vertices, every index
+  in range, each edge shared by two triangles), a SurfaceState per state with the same steps and
+  a drop's surface drift below 1 %; the marker array with every ~markers_every-th state only;
 - the bag is closed (readable, not .active) when the node stops at ~steps.
 """
 import math
@@ -37,6 +40,7 @@ class Node3dTest(unittest.TestCase):
         rospy.init_node("ehd_capsule_node_3d_test", anonymous=True)
         path = rospy.get_param("~bag")
         steps = rospy.get_param("~steps")
+        markers_every = rospy.get_param("~markers_every")
         seen = []
         rospy.Subscriber(NODE + "/state", CapsuleState, lambda m: seen.append(m.step),
                          queue_size=100)
@@ -63,6 +67,9 @@ class Node3dTest(unittest.TestCase):
             markers = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/markers"])]
             shapes = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/shape"])]
             fields = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/field"])]
+            meshes = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/surface_mesh"])]
+            surfaces = [m for _, m, _ in
+                        bag.read_messages(topics=["/ehd_capsule/surface_state"])]
         self.assertEqual([s.step for s in states], list(range(1, steps + 1)))
         ca_e = [s.ca_e for s in states]
         self.assertAlmostEqual(ca_e[0], 0.3)
@@ -84,6 +91,21 @@ class Node3dTest(unittest.TestCase):
         resultant = math.sqrt(total.x ** 2 + total.y ** 2 + total.z ** 2)
         self.assertLess(resultant, 0.05 * magnitude / 642 * 4 * math.pi,
                         "a neutral drop in a uniform field feels no net force")
+        self.assertEqual(len(meshes), 1, "the triangles go into the bag once")
+        mesh = meshes[0]
+        self.assertEqual(mesh.vertex_count, 642)
+        self.assertEqual(len(mesh.triangles), 3 * 1280)
+        self.assertTrue(all(0 <= i < 642 for i in mesh.triangles))
+        edges = {}
+        for k in range(0, len(mesh.triangles), 3):
+            t = mesh.triangles[k:k + 3]
+            for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0])):
+                edges[(min(a, b), max(a, b))] = edges.get((min(a, b), max(a, b)), 0) + 1
+        self.assertTrue(all(c == 2 for c in edges.values()), "not a closed surface")
+        self.assertEqual([s.step for s in surfaces], list(range(1, steps + 1)))
+        self.assertTrue(all(abs(s.surface_drift) < 0.01 for s in surfaces))
+        self.assertEqual(len(markers), (steps + markers_every - 1) // markers_every,
+                         "marker arrays with every %d-th state" % markers_every)
         array = markers[-1]
         by_ns = {m.ns: m for m in array.markers}
         self.assertIn("surface", by_ns)

@@ -61,6 +61,7 @@ class CapsuleNode {
   void ApplyPendingRequests();
   void StepOnce();
   void PublishState();
+  void PublishSurfaceMesh();  // 3D: the latched triangles (and into the bag)
   void PublishDiagnostics(bool force);
   // One console line (step, t, D_xy, theta, area drift, steps/s) every ~progress_period wall
   // seconds while running (0: never), and a summary at the end of Run().
@@ -86,6 +87,9 @@ class CapsuleNode {
   std::vector<std::string> overrides_;
   long max_steps_ = 0;  // 0: run until shutdown
   int publish_every_ = 1;
+  // The marker array (surface, section, arrows, text) with every n-th published state: 1 in 2D,
+  // 10 in 3D by default (the surface's triangle list is most of a 3D bag).
+  int markers_every_ = 1;
   std::string frame_id_ = "ehd";
   double force_arrow_scale_ = 1.0;
   bool velocity_arrows_ = false;
@@ -134,9 +138,10 @@ class CapsuleNode {
   bool config_dirty_ = false;  // config_ must be pushed back to dynamic_reconfigure
 
   ros::Publisher state_pub_, shape_pub_, markers_pub_, scene_pub_, clock_pub_, diag_pub_;
-  ros::Publisher throttled_pub_;  // ~state_throttled
-  ros::Publisher field_pub_;      // ~field
-  ros::Publisher tf_static_pub_;  // /tf_static
+  ros::Publisher throttled_pub_;                         // ~state_throttled
+  ros::Publisher field_pub_;                             // ~field
+  ros::Publisher tf_static_pub_;                         // /tf_static
+  ros::Publisher surface_mesh_pub_, surface_state_pub_;  // 3D only
   ros::ServiceServer pause_srv_, resume_srv_, reset_srv_, advance_srv_, advance_by_srv_;
   std::unique_ptr<dynamic_reconfigure::Server<ehd_capsule::SimulationConfig>> reconfigure_;
   boost::recursive_mutex reconfigure_mutex_;
@@ -144,6 +149,7 @@ class CapsuleNode {
   rosbag::Bag bag_;
   bool bag_open_ = false;
   long published_states_ = 0;
+  long states_since_markers_ = 0;  // published states since the last marker array
 
   ros::WallTime last_diag_;
   ros::WallTime rate_window_start_;

@@ -11,6 +11,8 @@
 #include <string>
 
 #include "ehd_capsule/CapsuleState.h"
+#include "ehd_capsule/SurfaceMesh.h"
+#include "ehd_capsule/SurfaceState.h"
 #include "ehd_capsule/coupling/simulation.h"
 
 namespace ehd::ros_node {
@@ -27,6 +29,14 @@ double LatticeRadius(const Simulation& sim);
 double LatticeForceDensityScale(const Simulation& sim);
 
 ehd_capsule::CapsuleState MakeCapsuleState(const Simulation& sim,
+                                           const StateMessageSettings& settings,
+                                           const ros::Time& stamp);
+// 3D only (throw std::logic_error in 2D): the triangles of the membrane mesh, and the measures
+// CapsuleState has no field for (msg/SurfaceState.msg).
+ehd_capsule::SurfaceMesh MakeSurfaceMesh(const Simulation& sim,
+                                         const StateMessageSettings& settings,
+                                         const ros::Time& stamp);
+ehd_capsule::SurfaceState MakeSurfaceState(const Simulation& sim,
                                            const StateMessageSettings& settings,
                                            const ros::Time& stamp);
 geometry_msgs::PolygonStamped MakeShape(const Simulation& sim, const StateMessageSettings& settings,
