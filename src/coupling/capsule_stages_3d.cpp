@@ -369,12 +369,21 @@ MarkerStage3D::MarkerStage3D(const Scene& scene, const Grid3D& grid, const Immer
       ib_(ib),
       body_(body),
       fluid_(fluid),
-      advector_(IntegratorOf(scene)) {}
+      advector_(IntegratorOf(scene)) {
+  if (scene.numerics.marker_filter_every > 0) {
+    filter_ = std::make_unique<MeshScaleFilter>(body.mesh);  // the rest mesh
+  }
+}
 
 std::string MarkerStage3D::Describe() const {
-  return std::string("interpolate u at the vertices, ") +
-         (advector_.scheme() == MarkerIntegrator::kAdamsBashforth2 ? "Adams-Bashforth 2"
-                                                                   : "forward Euler");
+  std::string text = std::string("interpolate u at the vertices, ") +
+                     (advector_.scheme() == MarkerIntegrator::kAdamsBashforth2 ? "Adams-Bashforth 2"
+                                                                               : "forward Euler");
+  if (filter_) {
+    text += ", mesh-scale filter of the deformation (order " + std::to_string(filter_->order()) +
+            ") every " + std::to_string(scene_.numerics.marker_filter_every) + " steps";
+  }
+  return text;
 }
 
 void MarkerStage3D::Run(long step) {
@@ -382,6 +391,7 @@ void MarkerStage3D::Run(long step) {
                   body_.mesh.vertices(), body_.U);
   scratch_ = body_.mesh.vertices();
   advector_.Advance(body_.U, 1.0, scratch_);
+  if (filter_ && step % scene_.numerics.marker_filter_every == 0) filter_->Apply(scratch_);
   if (scene_.has_shear()) WrapSurfaceIntoDomain(grid_, {true, false, true}, scratch_);
   if (!scratch_.allFinite()) FailStep(step, "vertex position is not finite (NaN/Inf)");
   const double margin = 2.0 * grid_.h;

@@ -400,9 +400,13 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
     BlockReader n(top.Child("numerics"), "numerics", origin);
     s.numerics.tau = n.Number("tau", LeftOpen(0.5, 20.0), 1.0,
                               "LBM relaxation time of the outer fluid, nu = (tau - 1/2)/3");
-    const std::string integrator =
-        n.Choice("integrator", {"forward_euler", "adams_bashforth2"}, std::string("forward_euler"),
-                 "marker time integration");
+    // 3D default Adams-Bashforth 2: forward Euler turns a tank-treading vertex outwards by
+    // (omega dt)^2 / 2 of its radius per step, which inflated sphere_shear's volume by 7e-5 per
+    // time unit (1.4 % by t = 200); AB2 by 2e-5 (docs/validation_3d.md, "Long runs"). 2D keeps
+    // forward Euler, with which its tables were made.
+    const std::string integrator = n.Choice(
+        "integrator", {"forward_euler", "adams_bashforth2"},
+        std::string(three_d ? "adams_bashforth2" : "forward_euler"), "marker time integration");
     s.numerics.integrator = integrator == "adams_bashforth2" ? MarkerTimeScheme::kAdamsBashforth2
                                                              : MarkerTimeScheme::kForwardEuler;
     s.numerics.membrane_substeps = static_cast<int>(
@@ -425,8 +429,9 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
         n.Number("redistribute_markers", Closed(0.0, 1e6), 0.0,
                  "drops: re-space the markers evenly when max/min spacing exceeds this; 0 = off");
     s.numerics.marker_filter_every = static_cast<int>(
-        n.Integer("marker_filter_every", 0, three_d ? 0 : 1000000000, three_d ? 0 : 100,
-                  three_d ? "the sawtooth filter is for 2D marker chains; 0 in 3D"
+        n.Integer("marker_filter_every", 0, 1000000000, 100,
+                  three_d ? "remove the mesh-scale part of the membrane's deformation every n "
+                            "steps (ib/mesh_scale_filter.h); 0 = off"
                           : "smooth the markers' sawtooth mode every n steps; 0 = off"));
     if (s.numerics.redistribute_markers != 0.0 && s.numerics.redistribute_markers <= 1.0) {
       throw SceneError("scene " + origin + ": numerics.redistribute_markers = " +

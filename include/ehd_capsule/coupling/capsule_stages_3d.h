@@ -24,6 +24,7 @@
 #include "ehd_capsule/geometry/triangle_mesh.h"
 #include "ehd_capsule/ib/immersed_boundary.h"
 #include "ehd_capsule/ib/marker_update.h"
+#include "ehd_capsule/ib/mesh_scale_filter.h"
 #include "ehd_capsule/lbm/lattice_boltzmann.h"
 #include "ehd_capsule/membrane/helfrich_bending.h"
 #include "ehd_capsule/membrane/surface_elasticity.h"
@@ -149,6 +150,9 @@ class MarkerStage3D : public StepStage {
   const LatticeBoltzmann3D& fluid_;
   PointAdvector<3> advector_;
   Eigen::Matrix3Xd scratch_;
+  // The mesh-scale filter of the deformation (numerics.marker_filter_every > 0), built on the
+  // rest mesh.
+  std::unique_ptr<MeshScaleFilter> filter_;
 };
 
 class DiagnosticsStage3D : public StepStage {
