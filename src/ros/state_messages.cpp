@@ -243,11 +243,11 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
   array.markers.push_back(membrane);
   if (three_d) {
     // The surface as a shaded triangle list, coloured by the normal electric traction where
-    // there is a field (blue: pulled inwards, yellow: outwards), else one colour.
+    // there is a field (dark blue: pulled inwards most, yellow: outwards most), else one colour.
     visualization_msgs::Marker surface =
         BaseMarker(settings, stamp, "surface", 5, visualization_msgs::Marker::TRIANGLE_LIST);
     surface.scale.x = surface.scale.y = surface.scale.z = 1.0;
-    surface.color = Color(0.55f, 0.7f, 0.95f, 0.9f);
+    surface.color = Color(0.55f, 0.7f, 0.95f, 1.0f);
     const bool coloured = s.electric_force.cols() == s.markers.cols();
     const Eigen::Vector3d centroid = s.markers.rowwise().mean();
     std::vector<double> normal_traction;
@@ -257,9 +257,13 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
       for (int k = 0; k < s.markers.cols(); ++k) {
         const Eigen::Vector3d n = (s.markers.col(k) - centroid).normalized();
         normal_traction[k] = s.electric_force.col(k).dot(n);
-        lo = std::min(lo, normal_traction[k]);
-        hi = std::max(hi, normal_traction[k]);
       }
+      // The ramp spans the 2nd to the 98th percentile, so a few extreme vertices do not leave
+      // the rest of the surface in one colour.
+      std::vector<double> sorted = normal_traction;
+      std::sort(sorted.begin(), sorted.end());
+      lo = sorted[static_cast<std::size_t>(0.02 * (sorted.size() - 1))];
+      hi = sorted[static_cast<std::size_t>(0.98 * (sorted.size() - 1))];
     }
     for (const auto& t : sim.triangles()) {
       for (int c = 0; c < 3; ++c) {
@@ -267,7 +271,11 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
         surface.points.push_back(
             ToPoint(s.markers(0, v) / a, s.markers(1, v) / a, s.markers(2, v) / a));
         if (coloured) {
-          surface.colors.push_back(Ramp(hi > lo ? (normal_traction[v] - lo) / (hi - lo) : 0.5));
+          // Opaque: rviz does not sort a list's triangles, so a translucent surface shows its
+          // back half through the front in patches.
+          std_msgs::ColorRGBA colour = Ramp(hi > lo ? (normal_traction[v] - lo) / (hi - lo) : 0.5);
+          colour.a = 1.0f;
+          surface.colors.push_back(colour);
         }
       }
     }
