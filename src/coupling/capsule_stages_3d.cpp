@@ -83,6 +83,10 @@ std::string ElectricStage3D::Describe() const {
       << scene_.numerics.electric_every << " step(s)";
   if (scene_.numerics.electric_move_tolerance > 0) {
     out << " or after a move > " << scene_.numerics.electric_move_tolerance << " h";
+    if (scene_.numerics.electric_shape_tolerance > 0) {
+      out << " that takes the surface more than " << scene_.numerics.electric_shape_tolerance
+          << " h off the solved one (smaller moves re-interpolate the solved traction)";
+    }
   }
   out << ", force [M_E].n A_i per vertex";
   return out.str();
@@ -95,6 +99,32 @@ void ElectricStage3D::Reset() {
   solver_->set_warm_start(LeakyDielectricSolver3D::WarmStart());
   last_solve_step_ = -1;
   solved_field_ = -1.0;
+  solved_vertices_.resize(3, 0);
+  solved_traction_.resize(3, 0);
+  projector_.reset();
+}
+
+double ElectricStage3D::ReinterpolateTraction() {
+  if (!projector_) {
+    TriangleMesh solved = body_.mesh;
+    solved.SetVertices(solved_vertices_);
+    projector_ = std::make_unique<SurfaceProjector>(solved, 1.0);
+  }
+  const Eigen::Matrix3Xd& x = body_.mesh.vertices();
+  const auto& triangles = body_.mesh.triangles();
+  const SurfaceGeometry geometry = MeasureSurface(body_.mesh);
+  double farthest = 0.0;
+  for (int v = 0; v < x.cols(); ++v) {
+    const SurfacePoint foot = projector_->Closest(x.col(v));
+    farthest = std::max(farthest, foot.distance);
+    const auto& t = triangles[foot.triangle];
+    const Eigen::Vector3d traction = foot.barycentric(0) * solved_traction_.col(t[0]) +
+                                     foot.barycentric(1) * solved_traction_.col(t[1]) +
+                                     foot.barycentric(2) * solved_traction_.col(t[2]);
+    body_.electric_traction.col(v) = traction;
+    body_.electric_force.col(v) = traction * geometry.vertex_area[v];
+  }
+  return farthest;
 }
 
 const std::vector<double>& ElectricStage3D::potential() const { return solver_->potential(); }
@@ -113,8 +143,21 @@ void ElectricStage3D::Run(long step) {
                step - last_solve_step_ >= scene_.numerics.electric_every;
   if (!solve && scene_.numerics.electric_move_tolerance > 0.0) {
     const double tol = scene_.numerics.electric_move_tolerance;
-    solve = (body_.mesh.vertices() - vertices_at_last_solve_).colwise().squaredNorm().maxCoeff() >
-            tol * tol;
+    const bool moved =
+        (body_.mesh.vertices() - vertices_at_last_solve_).colwise().squaredNorm().maxCoeff() >
+        tol * tol;
+    if (moved && scene_.numerics.electric_shape_tolerance > 0.0) {
+      // The vertices moved; if the surface did not (tank-treading along a steady shape), the
+      // solved traction field, re-interpolated at the moved vertices, is still the answer.
+      const Eigen::Matrix3Xd traction = body_.electric_traction, force = body_.electric_force;
+      if (ReinterpolateTraction() <= scene_.numerics.electric_shape_tolerance) {
+        vertices_at_last_solve_ = body_.mesh.vertices();
+        return;
+      }
+      body_.electric_traction = traction;  // the solve below replaces them anyway
+      body_.electric_force = force;
+    }
+    solve = moved;
   }
   if (!solve) return;
   solver_->SetAppliedField(body_.field);
@@ -131,6 +174,11 @@ void ElectricStage3D::Run(long step) {
   vertices_at_last_solve_ = body_.mesh.vertices();
   last_solve_step_ = step;
   solved_field_ = body_.field;
+  if (scene_.numerics.electric_shape_tolerance > 0.0) {
+    solved_vertices_ = body_.mesh.vertices();
+    solved_traction_ = body_.electric_traction;
+    projector_.reset();
+  }
 }
 
 void ElectricStage3D::Save(CheckpointWriter& w) const {
@@ -145,6 +193,8 @@ void ElectricStage3D::Save(CheckpointWriter& w) const {
   w.Mat(vertices_at_last_solve_);
   w.Pod(last_solve_step_);
   w.Pod(solved_field_);
+  w.Mat(solved_vertices_);
+  w.Mat(solved_traction_);
 }
 
 void ElectricStage3D::Restore(CheckpointReader& r) {
@@ -160,6 +210,9 @@ void ElectricStage3D::Restore(CheckpointReader& r) {
   vertices_at_last_solve_ = r.Mat<3>();
   last_solve_step_ = r.Pod<long>();
   solved_field_ = r.Pod<double>();
+  solved_vertices_ = r.Mat<3>();
+  solved_traction_ = r.Mat<3>();
+  projector_.reset();  // rebuilt from solved_vertices_ when needed
 }
 
 // ---------------------------------------------------------------------------------------------

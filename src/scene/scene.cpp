@@ -424,6 +424,15 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
     s.numerics.electric_move_tolerance =
         n.Number("electric_move_tolerance", Closed(0.0, 10.0), 0.0,
                  "re-solve when a marker moved more than this (cells); 0 = off");
+    s.numerics.electric_shape_tolerance = n.Number(
+        "electric_shape_tolerance", Closed(0.0, 1.0), 0.0,
+        "3D: re-interpolate the last solve's traction at moved vertices while the surface stays "
+        "within this distance (cells) of that solve's surface; 0 = off");
+    if (!three_d && s.numerics.electric_shape_tolerance > 0.0) {
+      throw SceneError("scene " + origin + ": numerics.electric_shape_tolerance = " +
+                       FormatNumber(s.numerics.electric_shape_tolerance) +
+                       " is built in 3D only (accepted in 2D: 0)");
+    }
     s.numerics.max_steps = n.Integer("max_steps", 1, 1000000000000L, 1000000, "step cap");
     s.numerics.t_end = n.Number("t_end", LeftOpen(0.0, 1e6), 10.0,
                                 "default run length in units of the scene's time scale");

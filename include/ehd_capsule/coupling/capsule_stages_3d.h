@@ -21,6 +21,7 @@
 #include "ehd_capsule/coupling/step_stage.h"
 #include "ehd_capsule/diagnostics/shape_diagnostics_3d.h"
 #include "ehd_capsule/diagnostics/tank_treading.h"
+#include "ehd_capsule/geometry/surface_projection.h"
 #include "ehd_capsule/geometry/triangle_mesh.h"
 #include "ehd_capsule/ib/immersed_boundary.h"
 #include "ehd_capsule/ib/marker_update.h"
@@ -69,10 +70,18 @@ class ElectricStage3D : public StepStage {
  private:
   const Scene& scene_;
   MembraneSurface3D& body_;
+  // Re-interpolates the last solve's traction at the current vertices (closest points on the
+  // solved surface, barycentric weights) and sets the forces from it; returns the largest
+  // distance of a vertex from the solved surface (cells).
+  double ReinterpolateTraction();
+
   std::unique_ptr<LeakyDielectricSolver3D> solver_;
-  Eigen::Matrix3Xd vertices_at_last_solve_;
+  Eigen::Matrix3Xd vertices_at_last_solve_;  // at the last force update (solve or re-interpolation)
   long last_solve_step_ = -1;
   double solved_field_ = -1.0;
+  // The surface and traction of the last solve (numerics.electric_shape_tolerance > 0).
+  Eigen::Matrix3Xd solved_vertices_, solved_traction_;
+  std::unique_ptr<SurfaceProjector> projector_;  // of the solved surface, rebuilt on demand
 };
 
 class MembraneStage3D : public StepStage {

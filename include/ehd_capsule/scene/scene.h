@@ -66,9 +66,14 @@ struct SceneNumerics {
   int membrane_substeps = 1;
   int electric_every = 1;              // solve the potential every n steps ...
   double electric_move_tolerance = 0;  // ... or when a marker moved more (cells) since the last
-  long max_steps = 1000000;            // hard cap for `ehd_sim run`
-  double t_end = 10.0;                 // default run length (dimensionless time)
-  double area_drift_limit = 0.05;      // watchdog: |A/A0 - 1|
+  // 3D: between solves, when the vertices have moved (electric_move_tolerance) but the surface
+  // stays within this distance (cells) of the surface of the last solve, the traction field of
+  // that solve is re-interpolated at the moved vertices instead of re-solving (tank-treading
+  // carries vertices along a steady shape). 0 = off: every such move re-solves.
+  double electric_shape_tolerance = 0;
+  long max_steps = 1000000;        // hard cap for `ehd_sim run`
+  double t_end = 10.0;             // default run length (dimensionless time)
+  double area_drift_limit = 0.05;  // watchdog: |A/A0 - 1|
   // Drops only (0 = off): when the largest / smallest marker spacing exceeds this ratio, the
   // markers are re-spaced evenly along the curve (marker 0 stays). A drop's markers are not
   // material (isotropic tension), they drift with the tank-treading flow and bunch, and gaps of
