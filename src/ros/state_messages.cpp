@@ -36,24 +36,22 @@ struct ShearPlane {
 
 ShearPlane PlaneOf(const Simulation& sim) {
   ShearPlane p;
-  if (sim.state().dimension == 3) {
-    const Grid3D& g = sim.grid3d();
+  auto in_plane = [&p](const auto& g) {  // Grid2D or Grid3D: the x-y extent
     p.nx = g.nx;
     p.ny = g.ny;
     p.h = g.h;
     p.x0 = g.x0;
     p.y0 = g.y0;
+  };
+  if (sim.state().dimension == 3) {
+    const Grid3D& g = sim.grid3d();
+    in_plane(g);
     const double zc = sim.state().markers.cols() > 0 ? sim.state().markers.row(2).mean() : 0.0;
     p.k = std::min(g.nz - 1, std::max(0, static_cast<int>(std::floor((zc - g.z0) / g.h))));
     p.offset = g.index(0, 0, p.k);
     p.z = g.z(p.k);
   } else {
-    const Grid2D& g = sim.grid();
-    p.nx = g.nx;
-    p.ny = g.ny;
-    p.h = g.h;
-    p.x0 = g.x0;
-    p.y0 = g.y0;
+    in_plane(sim.grid());
   }
   return p;
 }
