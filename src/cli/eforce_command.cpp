@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "command.h"
+#include "ehd_capsule/electric/interface_examples_3d.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver_3d.h"
 
@@ -57,20 +58,8 @@ Force3D Force3DFor(int n, const TriangleMesh& mesh, double sigma_r, double eps_r
   return out;
 }
 
-// The free-space Maxwell traction jump on a leaky-dielectric sphere of radius 1 in E_inf =
-// (0, 0, -1) (as test/electric/leaky_dielectric_solver_3d_test.cpp).
 Eigen::Vector3d FreeSpaceTraction(const Eigen::Vector3d& p, double sigma_r, double eps_r) {
-  const double a = 3.0 / (sigma_r + 2.0), b = (sigma_r - 1.0) / (sigma_r + 2.0);
-  const Eigen::Vector3d n = p.normalized();
-  const double r = p.norm();
-  const Eigen::Vector3d e_minus(0, 0, -a);
-  const Eigen::Vector3d e_plus =
-      -(Eigen::Vector3d(0, 0, 1) -
-        b * (Eigen::Vector3d(0, 0, 1) / std::pow(r, 3) - 3 * p.z() * p / std::pow(r, 5)));
-  const double enm = e_minus.dot(n), enp = e_plus.dot(n);
-  const Eigen::Vector3d etm = e_minus - enm * n, etp = e_plus - enp * n;
-  return 0.5 * ((enp * enp - etp.squaredNorm()) - eps_r * (enm * enm - etm.squaredNorm())) * n +
-         enp * etp - eps_r * enm * etm;
+  return FreeSpaceSphereTraction(p, 1.0, 1.0, sigma_r, 1.0, eps_r, 1.0);
 }
 
 int RunEforce3D(double sigma_r, double eps_r) {

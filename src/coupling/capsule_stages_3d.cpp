@@ -149,13 +149,11 @@ void ElectricStage3D::Run(long step) {
     if (moved && scene_.numerics.electric_shape_tolerance > 0.0) {
       // The vertices moved; if the surface did not (tank-treading along a steady shape), the
       // solved traction field, re-interpolated at the moved vertices, is still the answer.
-      const Eigen::Matrix3Xd traction = body_.electric_traction, force = body_.electric_force;
+      // (If the surface did move, the solve below replaces the re-interpolated forces.)
       if (ReinterpolateTraction() <= scene_.numerics.electric_shape_tolerance) {
         vertices_at_last_solve_ = body_.mesh.vertices();
         return;
       }
-      body_.electric_traction = traction;  // the solve below replaces them anyway
-      body_.electric_force = force;
     }
     solve = moved;
   }

@@ -129,4 +129,25 @@ InterfaceProblem3D SampleInterfaceProblem3D(const InterfaceExample3D& e, const G
   return p;
 }
 
+Eigen::Vector3d FreeSpaceSphereTraction(const Eigen::Vector3d& p, double radius, double e,
+                                        double sigma_minus, double sigma_plus, double eps_minus,
+                                        double eps_plus) {
+  const double a = 3 * sigma_plus / (sigma_minus + 2 * sigma_plus);
+  const double b = (sigma_minus - sigma_plus) / (sigma_minus + 2 * sigma_plus);
+  const Eigen::Vector3d n = p.normalized();
+  const double r = p.norm();
+  const Eigen::Vector3d e_minus(0, 0, -a * e);
+  const Eigen::Vector3d e_plus =
+      -(Eigen::Vector3d(0, 0, e) -
+        b * e * std::pow(radius, 3) *
+            (Eigen::Vector3d(0, 0, 1) / std::pow(r, 3) - 3 * p.z() * p / std::pow(r, 5)));
+  const double enm = e_minus.dot(n), enp = e_plus.dot(n);
+  const Eigen::Vector3d etm = e_minus - enm * n, etp = e_plus - enp * n;
+  return 0.5 *
+             (eps_plus * (enp * enp - etp.squaredNorm()) -
+              eps_minus * (enm * enm - etm.squaredNorm())) *
+             n +
+         eps_plus * enp * etp - eps_minus * enm * etm;
+}
+
 }  // namespace ehd

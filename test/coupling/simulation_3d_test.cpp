@@ -9,6 +9,7 @@
 #include <string>
 
 #include "ehd_capsule/coupling/simulation.h"
+#include "ehd_capsule/electric/interface_examples_3d.h"
 
 namespace ehd {
 namespace {
@@ -169,23 +170,12 @@ TEST(Simulation3D, ElectricFieldActsOnTheMembrane) {
   ASSERT_EQ(s.electric_force.cols(), s.markers.cols());
   EXPECT_GT(s.gmres_iterations, 0);
   const double e = sim.units().field, sm = 1.75, sp = 1.0, em = 3.5, ep = 1.0;
-  const double a = 3 * sp / (sm + 2 * sp), b = (sm - sp) / (sm + 2 * sp);
   const Eigen::Vector3d centre = s.markers.rowwise().mean();
   const double radius = (s.markers.colwise() - centre).colwise().norm().mean();
   double worst = 0, scale = 0;
   for (int v = 0; v < s.markers.cols(); ++v) {
-    const Eigen::Vector3d p = s.markers.col(v) - centre, n = p.normalized();
-    const double r = p.norm();
-    const Eigen::Vector3d e_minus(0, 0, -a * e);
-    const Eigen::Vector3d e_plus =
-        -(Eigen::Vector3d(0, 0, e) -
-          b * e * std::pow(radius, 3) *
-              (Eigen::Vector3d(0, 0, 1) / std::pow(r, 3) - 3 * p.z() * p / std::pow(r, 5)));
-    const double enm = e_minus.dot(n), enp = e_plus.dot(n);
-    const Eigen::Vector3d etm = e_minus - enm * n, etp = e_plus - enp * n;
     const Eigen::Vector3d exact =
-        0.5 * (ep * (enp * enp - etp.squaredNorm()) - em * (enm * enm - etm.squaredNorm())) * n +
-        ep * enp * etp - em * enm * etm;
+        FreeSpaceSphereTraction(s.markers.col(v) - centre, radius, e, sm, sp, em, ep);
     worst = std::max(worst, (s.electric_force.col(v) - exact).norm());
     scale = std::max(scale, exact.norm());
   }

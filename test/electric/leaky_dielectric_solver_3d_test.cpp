@@ -12,6 +12,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ehd_capsule/electric/interface_examples_3d.h"
+
 namespace ehd {
 namespace {
 
@@ -24,24 +26,12 @@ TEST(LeakyDielectricSolver3D, SphereInAUniformFieldMatchesTheFreeSpaceTraction) 
   const TriangleMesh mesh = IcosphereMesh(4, radius);
   const InterfaceSolveReport report = solver.Solve(mesh, 0.0);
   EXPECT_TRUE(report.converged);
-  // Free space: phi^- = A E z, phi^+ = E z - B E R^3 z / r^3, A = 3 s+/(s- + 2 s+),
-  // B = (s- - s+)/(s- + 2 s+); E = -grad phi.
-  const double a = 3 * sp / (sm + 2 * sp), b = (sm - sp) / (sm + 2 * sp);
+  // Free space (electric/interface_examples_3d.h).
   double worst = 0, scale = 0;
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
   for (int v = 0; v < mesh.vertex_count(); ++v) {
-    const Eigen::Vector3d p = mesh.vertices().col(v), nrm = p.normalized();
-    const double r = p.norm();
-    const Eigen::Vector3d e_minus(0, 0, -a * e);
-    const Eigen::Vector3d e_plus =
-        -(Eigen::Vector3d(0, 0, e) -
-          b * e * std::pow(radius, 3) *
-              (Eigen::Vector3d(0, 0, 1) / std::pow(r, 3) - 3 * p.z() * p / std::pow(r, 5)));
-    const double enm = e_minus.dot(nrm), enp = e_plus.dot(nrm);
-    const Eigen::Vector3d etm = e_minus - enm * nrm, etp = e_plus - enp * nrm;
     const Eigen::Vector3d exact =
-        0.5 * (ep * (enp * enp - etp.squaredNorm()) - em * (enm * enm - etm.squaredNorm())) * nrm +
-        ep * enp * etp - em * enm * etm;
+        FreeSpaceSphereTraction(mesh.vertices().col(v), radius, e, sm, sp, em, ep);
     worst = std::max(worst, (solver.traction().col(v) - exact).norm());
     scale = std::max(scale, exact.norm());
     total += solver.force().col(v);

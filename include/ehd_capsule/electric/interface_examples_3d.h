@@ -54,4 +54,13 @@ InterfaceProblem3D SampleInterfaceProblem3D(const InterfaceExample3D& e, const G
                                             const TriangleMesh& mesh,
                                             const SurfaceClassification3D& sides);
 
+// The Maxwell traction jump [M_E].n (eq. (149)-(150) in 3D) on a leaky-dielectric sphere of
+// the given radius centred at the origin, in free space, in the uniform field E_inf = (0, 0, -e),
+// at the surface point p: phi^- = A e z, phi^+ = e z - B e R^3 z / r^3 with
+// A = 3 sigma+ / (sigma- + 2 sigma+), B = (sigma- - sigma+) / (sigma- + 2 sigma+). The reference
+// the 3D electric tests and `ehd_sim eforce --dim 3` compare with.
+Eigen::Vector3d FreeSpaceSphereTraction(const Eigen::Vector3d& p, double radius, double e,
+                                        double sigma_minus, double sigma_plus, double eps_minus,
+                                        double eps_plus);
+
 }  // namespace ehd
