@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "ehd_capsule/electric/leaky_dielectric_solver_3d.h"
+#include "ehd_capsule/geometry/mesh_relaxation.h"
 #include "ehd_capsule/membrane/membrane_stability.h"
 
 namespace ehd {
@@ -427,12 +428,20 @@ MarkerStage3D::MarkerStage3D(const Scene& scene, const Grid3D& grid, const Immer
 }
 
 std::string MarkerStage3D::Describe() const {
-  std::string text = std::string("interpolate u at the vertices, ") +
-                     (advector_.scheme() == MarkerIntegrator::kAdamsBashforth2 ? "Adams-Bashforth 2"
-                                                                               : "forward Euler");
+  std::string text =
+      std::string(scene_.membrane == MembraneKind::kDrop
+                      ? "interpolate u at the vertices, move them with its normal part and the "
+                        "mean (a drop's vertices are not material), "
+                      : "interpolate u at the vertices, ") +
+      (advector_.scheme() == MarkerIntegrator::kAdamsBashforth2 ? "Adams-Bashforth 2"
+                                                                : "forward Euler");
   if (filter_) {
     text += ", mesh-scale filter of the deformation (order " + std::to_string(filter_->order()) +
             ") every " + std::to_string(scene_.numerics.marker_filter_every) + " steps";
+  }
+  if (scene_.numerics.relax_mesh_every > 0) {
+    text += ", vertices relaxed along the surface every " +
+            std::to_string(scene_.numerics.relax_mesh_every) + " steps";
   }
   return text;
 }
@@ -441,7 +450,11 @@ void MarkerStage3D::Run(long step) {
   ib_.Interpolate({&fluid_.velocity(0), &fluid_.velocity(1), &fluid_.velocity(2)},
                   body_.mesh.vertices(), body_.U);
   scratch_ = body_.mesh.vertices();
-  advector_.Advance(body_.U, 1.0, scratch_);
+  if (scene_.membrane == MembraneKind::kDrop) {
+    advector_.Advance(DropVertexVelocity(body_.mesh, body_.U), 1.0, scratch_);
+  } else {
+    advector_.Advance(body_.U, 1.0, scratch_);
+  }
   if (filter_ && step % scene_.numerics.marker_filter_every == 0) filter_->Apply(scratch_);
   if (scene_.has_shear()) WrapSurfaceIntoDomain(grid_, {true, false, true}, scratch_);
   if (!scratch_.allFinite()) FailStep(step, "vertex position is not finite (NaN/Inf)");
@@ -460,6 +473,9 @@ void MarkerStage3D::Run(long step) {
     }
   }
   body_.mesh.SetVertices(scratch_);
+  if (scene_.numerics.relax_mesh_every > 0 && step % scene_.numerics.relax_mesh_every == 0) {
+    RelaxMeshTangentially(body_.mesh, 1, 0.5, grid_.h);
+  }
 }
 
 void MarkerStage3D::Save(CheckpointWriter& w) const {
@@ -548,9 +564,12 @@ void DiagnosticsStage3D::Run(long step) {
   }
   const double drift = d.volume / body_.initial_volume - 1.0;
   if (!std::isfinite(drift) || std::abs(drift) > scene_.numerics.area_drift_limit) {
+    // The usual cause is an edge longer than 2 h: the immersed boundary leaks through the gap.
+    const MeshQuality q = MeasureQuality(body_.mesh);
     FailStep(step, "enclosed volume drifted by " + FormatValue(100.0 * drift) + "% (limit " +
                        FormatValue(100.0 * scene_.numerics.area_drift_limit) +
-                       "%, numerics.area_drift_limit); " + MeasureQuality(body_.mesh).Describe());
+                       "%, numerics.area_drift_limit); " + q.Describe() +
+                       (q.max_edge > 2.0 ? " (edges > 2 h leak: raise mesh_subdivisions)" : ""));
   }
   // Mesh-scale instability: vertices closer than a grid cell carry modes the immersed boundary
   // cannot see, which can grow until triangles fold (the 3D counterpart of the 2D markers'
@@ -564,8 +583,8 @@ void DiagnosticsStage3D::Run(long step) {
                          FormatValue(initial_min_angle_) +
                          "): triangles folding (a mesh-scale instability: use fewer vertices per "
                          "grid cell, i.e. mesh_subdivisions lower or N higher, or more bending "
-                         "E_b) or stretched beyond use (a drop's surface is not remeshed yet: "
-                         "lower Ca); " +
+                         "E_b) or stretched beyond use (the mesh is not refined as it stretches: "
+                         "lower Ca or raise mesh_subdivisions); " +
                          q.Describe());
     }
   }

@@ -450,6 +450,22 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
                   three_d ? "remove the mesh-scale part of the membrane's deformation every n "
                             "steps (ib/mesh_scale_filter.h); 0 = off"
                           : "smooth the markers' sawtooth mode every n steps; 0 = off"));
+    const bool drop_3d = three_d && s.membrane == MembraneKind::kDrop;
+    s.numerics.relax_mesh_every =
+        static_cast<int>(n.Integer("relax_mesh_every", 0, 1000000000, drop_3d ? 100 : 0,
+                                   "3D drops: relax the vertices along the surface every n steps "
+                                   "(geometry/mesh_relaxation.h); 0 = off"));
+    if (s.numerics.relax_mesh_every > 0 && !drop_3d) {
+      throw SceneError("scene " + origin +
+                       ": numerics.relax_mesh_every needs dimension: 3 and membrane: drop (a "
+                       "capsule's vertices are material points of its elastic reference; a 2D "
+                       "drop uses numerics.redistribute_markers)");
+    }
+    if (three_d && s.numerics.redistribute_markers != 0.0) {
+      throw SceneError("scene " + origin +
+                       ": numerics.redistribute_markers is 2D only (a 3D drop's mesh is relaxed "
+                       "along its surface every numerics.relax_mesh_every steps)");
+    }
     if (s.numerics.redistribute_markers != 0.0 && s.numerics.redistribute_markers <= 1.0) {
       throw SceneError("scene " + origin + ": numerics.redistribute_markers = " +
                        std::to_string(s.numerics.redistribute_markers) +

@@ -87,9 +87,11 @@ flow: shear
   EXPECT_LT(sim.state().inclination / M_PI, 0.26);
 }
 
-// The mesh-quality watchdog: a soft drop (Ca = 1.5) stretches until its (not remeshed) triangles
-// degenerate; the run stops naming the angle instead of going on to a fold or a NaN.
-TEST(Simulation3D, DegeneratingMeshStopsTheRunWithTheReason) {
+// The mesh watchdogs: a soft drop (Ca = 1.5, above the critical Ca of breakup) stretches until
+// its 642 vertices (not remeshed: only relaxed along the surface) no longer cover it: edges
+// grow past 2 h and the volume leaks through the gaps. The run stops naming the volume and the
+// edges, before a fold or a NaN.
+TEST(Simulation3D, OutstretchedMeshStopsTheRunWithTheReason) {
   Simulation sim(ParseScene(R"(
 name: soft_drop3d
 dimension: 3
@@ -106,9 +108,21 @@ flow: shear
     while (sim.state().time < 8.0) sim.Step();
     ADD_FAILURE() << "the stretched mesh was not caught";
   } catch (const SimulationError& e) {
-    EXPECT_NE(std::string(e.what()).find("smallest triangle angle"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("edges > 2 h leak: raise mesh_subdivisions"),
+              std::string::npos)
+        << e.what();
     EXPECT_TRUE(sim.state().markers.allFinite());
     EXPECT_GT(sim.state().dxy, 0.5);
+  }
+  // A capsule's vertices are material: a very soft one (Ca = 3, no mesh filter) shears its
+  // triangles until the smallest angle falls below 5 degrees, which stops the run naming it.
+  Simulation capsule(ParseScene(kTinySphere, {"Ca=3", "numerics.marker_filter_every=0"}));
+  try {
+    while (capsule.state().time < 8.0) capsule.Step();
+    ADD_FAILURE() << "the sheared mesh was not caught";
+  } catch (const SimulationError& e) {
+    EXPECT_NE(std::string(e.what()).find("smallest triangle angle"), std::string::npos) << e.what();
+    EXPECT_TRUE(capsule.state().markers.allFinite());
   }
 }
 
@@ -296,6 +310,10 @@ TEST(Simulation3D, SceneKeysAreValidatedForThreeDimensions) {
   refused({"law=skalak"}, "'C' missing");
   refused({"C=10"}, "only law: skalak");
   refused({"mesh_subdivisions=9"}, "out of range");
+  refused({"numerics.relax_mesh_every=10"},
+          "relax_mesh_every needs dimension: 3 and membrane: drop");
+  refused({"membrane=drop", "law=", "E_b=", "numerics.redistribute_markers=2"},
+          "redistribute_markers is 2D only");
   // A mesh too coarse for the grid (edges > 2 h) is refused naming the subdivision needed.
   try {
     Simulation coarse(ParseScene(kTinySphere, {"mesh_subdivisions=1", "N=48"}));

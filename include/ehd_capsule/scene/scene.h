@@ -78,7 +78,10 @@ struct SceneNumerics {
   // markers are re-spaced evenly along the curve (marker 0 stays). A drop's markers are not
   // material (isotropic tension), they drift with the tank-treading flow and bunch, and gaps of
   // several h let the immersed boundary leak (docs/coupling.md).
-  double redistribute_markers = 0;
+  double redistribute_markers = 0;  // 2D only
+  // 3D drops only (0 = off): every n steps the vertices are relaxed along the surface
+  // (geometry/mesh_relaxation.h), the 3D counterpart of redistribute_markers.
+  int relax_mesh_every = 0;
   // Every n steps the markers are smoothed by the five-point sawtooth filter
   // (ib/sawtooth_filter.h) that removes the odd-even marker mode the immersed boundary cannot
   // damp; 0 = off. Bias on the shapes: docs/coupling.md ("Long runs").
