@@ -21,7 +21,9 @@ const char* kUsage =
     "                         [--max-steps N] [--cases TEXT] [--set key=value ...]\n\n"
     "Runs the extreme cases on SCENE (default shear_field): sigma_r = 1000 and 1/1000,\n"
     "eps_r = 1/10 and 10, Ca_E = 5, Ca = 0.4, E_b = 0.5, tau near 1/2, V = 10, markers coarser\n"
-    "than the grid, a capsule touching the walls. Each runs to a physical horizon, t = T\n"
+    "than the grid, a capsule touching the walls. A 3D SCENE (sphere_shear_field) gets the 3D\n"
+    "list: sigma_r = 1000 and 1/1000, Ca_E = 5, Ca = 0.2, a mesh coarser than the grid, a\n"
+    "capsule touching the walls. Each runs to a physical horizon, t = T\n"
     "(default 100, the scene's time unit), or until steady (D_xy and theta steady to TOL over a\n"
     "unit of time, relative as in `run --until-steady`; default 1e-4). Outcomes:\n"
     "  steady     reached a steady state (at the time shown), or at T D_xy within +-0.5% and\n"
@@ -73,7 +75,19 @@ int Stability(const std::vector<std::string>& args) {
   if (!(until > 0.0)) throw UsageError("--until must be > 0");
   if (!(steady_tol > 0.0)) throw UsageError("--steady-tolerance must be > 0");
   if (max_steps < 1) throw UsageError("--max-steps must be >= 1");
-  const std::vector<Case> cases = {
+  // The 3D list (a scene with dimension: 3, e.g. sphere_shear_field): what 3D builds, with its
+  // own coarse-mesh and wall cases; V, M, tau and eps_r extremes are 2D-only entries.
+  const bool three_d = LoadScene(scene_name, base).dimension == 3;
+  const std::vector<Case> cases_3d = {
+      {"reference", {}},
+      {"sigma_r = 1000", {"sigma_r=1000", "Ca_E=0.3"}},
+      {"sigma_r = 1/1000", {"sigma_r=0.001", "Ca_E=0.3"}},
+      {"Ca_E = 5", {"electric.max_Ca_E=5", "Ca_E=5"}},
+      {"Ca = 0.2", {"max_Ca=10", "Ca=0.2"}},
+      {"coarse mesh (162 vertices)", {"mesh_subdivisions=2"}},
+      {"touching the walls (L = 1.1 a)", {"geometry.half_width=1.1"}},
+  };
+  const std::vector<Case> cases_2d = {
       {"reference", {}},
       {"sigma_r = 1000", {"sigma_r=1000", "Ca_E=0.3"}},
       {"sigma_r = 1/1000", {"sigma_r=0.001", "Ca_E=0.3"}},
@@ -87,6 +101,7 @@ int Stability(const std::vector<std::string>& args) {
       {"M = N/4 (markers coarser than grid)", {"M=16"}},
       {"touching the walls (L = 1.05 a)", {"geometry.half_width=1.05"}},
   };
+  const std::vector<Case>& cases = three_d ? cases_3d : cases_2d;
   std::printf("stability cases on scene %s, each to t = %g or steady to %g\n", scene_name.c_str(),
               until, steady_tol);
   std::printf("%-38s %-10s %8s %8s %9s %10s %10s %8s  %s\n", "case", "outcome", "t", "steps",
