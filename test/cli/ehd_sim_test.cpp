@@ -81,6 +81,24 @@ TEST(EhdSim, ThreeDimensionalForceConverges) {
   EXPECT_EQ(RunSim("eforce --dim 3 --sigma-ratio 1000").status, 2);
 }
 
+// `stability` on a 3D scene runs the 3D list; its cases the 3D solver cannot run are refused at
+// set-up naming the limit (a conductivity ratio beyond 10, a mesh coarser than 2 h), in
+// milliseconds, not run into a wrong answer.
+TEST(EhdSim, ThreeDimensionalStabilityRefusesWhatItCannotRun) {
+  const Result r =
+      RunSim("stability --scene sphere_shear_field --cases \"sigma_r = 1000,coarse mesh\"");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("accepted [1e-4, 10]"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("set mesh_subdivisions >= 3"), std::string::npos) << r.output;
+  int rejected = 0;
+  for (std::size_t at = r.output.find("rejected"); at != std::string::npos;
+       at = r.output.find("rejected", at + 1)) {
+    ++rejected;
+  }
+  EXPECT_EQ(rejected, 2) << r.output;
+  EXPECT_EQ(r.output.find("V = 10"), std::string::npos) << r.output;  // a 2D-only case
+}
+
 TEST(EhdSim, BadSceneValuesNameTheKey) {
   Result r = RunSim("run capsule_shear --set Ca=-0.1 --steps 1");
   EXPECT_NE(r.status, 0);
