@@ -22,8 +22,8 @@ const char* kUsage =
     "Runs the extreme cases on SCENE (default shear_field): sigma_r = 1000 and 1/1000,\n"
     "eps_r = 1/10 and 10, Ca_E = 5, Ca = 0.4, E_b = 0.5, tau near 1/2, V = 10, markers coarser\n"
     "than the grid, a capsule touching the walls. A 3D SCENE (sphere_shear_field) gets the 3D\n"
-    "list: sigma_r = 1000 and 1/1000, Ca_E = 5, Ca = 0.2, a mesh coarser than the grid, a\n"
-    "capsule touching the walls. Each runs to a physical horizon, t = T\n"
+    "list: sigma_r = 1000 and 1/1000, Ca_E = 15, Ca = 0.6 (song2019's 5 and 0.2), a mesh\n"
+    "coarser than the grid, a capsule touching the walls. Each runs to a physical horizon, t = T\n"
     "(default 100, the scene's time unit), or until steady (D_xy and theta steady to TOL over a\n"
     "unit of time, relative as in `run --until-steady`; default 1e-4). Outcomes:\n"
     "  steady     reached a steady state (at the time shown), or at T D_xy within +-0.5% and\n"
@@ -82,8 +82,10 @@ int Stability(const std::vector<std::string>& args) {
       {"reference", {}},
       {"sigma_r = 1000", {"sigma_r=1000", "Ca_E=0.3"}},
       {"sigma_r = 1/1000", {"sigma_r=0.001", "Ca_E=0.3"}},
-      {"Ca_E = 5", {"electric.max_Ca_E=5", "Ca_E=5"}},
-      {"Ca = 0.2", {"max_Ca=10", "Ca=0.2"}},
+      // 3D scenes write Ca and Ca_E with the shear modulus G_s, song2019 with E_s = 3 G_s: the
+      // issue's Ca_E = 5 and Ca = 0.2 are the text's.
+      {"Ca_E = 15 (the text's 5)", {"electric.max_Ca_E=15", "Ca_E=15"}},
+      {"Ca = 0.6 (the text's 0.2)", {"max_Ca=10", "Ca=0.6"}},
       {"coarse mesh (162 vertices)", {"mesh_subdivisions=2"}},
       {"touching the walls (L = 1.1 a)", {"geometry.half_width=1.1"}},
   };
