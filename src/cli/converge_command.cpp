@@ -22,12 +22,32 @@ const char* kUsage =
     "numerics.t_end) or at steady state, the difference to the finest grid (or, for a drop in a\n"
     "field without shear, to Feng's small-deformation D = f_d Ca_E / (3 (1 + sigma_r)^2)), the\n"
     "observed order log(e_coarse / e_fine) / log(N_fine / N_coarse), steps, wall s and ms/step.\n"
-    "With the field, D is signed: + elongated along the field (y), - across it.\n";
+    "With the field, D is signed: + elongated along the field (y), - across it.\n"
+    "A 3D SCENE refines its mesh with the grid instead (the icosphere level whose edge in cells\n"
+    "is nearest the scene's own) and adds D_z, the deformation along the field axis z.\n";
+
+// 3D: the icosphere level whose mean edge, in cells, is nearest (in ratio) to the scene's own at
+// N0 (each level halves the edge: edge ~ 0.151 a 2^(3 - level) for the icosphere; the biconcave
+// mesh scales the same way).
+int MeshLevelForGrid(const Scene& base, int n) {
+  const double edge_h0 = std::pow(2.0, -base.mesh_subdivisions) * base.N;  // up to a constant
+  int best = base.mesh_subdivisions;
+  double best_gap = 1e300;
+  for (int level = 1; level <= 6; ++level) {
+    const double gap = std::abs(std::log(std::pow(2.0, -level) * n / edge_h0));
+    if (gap < best_gap - 1e-12) {
+      best_gap = gap;
+      best = level;
+    }
+  }
+  return best;
+}
 
 struct Result {
   int n = 0, m = 0;
   long steps = 0;
   double wall = 0, dxy = 0, theta = 0, signed_d = 0, time = 0;
+  double d_field = 0;  // 3D: the deformation along the field axis z
   bool steady = false;
   std::string error;
 };
@@ -62,8 +82,9 @@ int Converge(const std::vector<std::string>& args) {
   if (until >= 0 && steady_tol >= 0) throw UsageError("give --until or --until-steady");
 
   const Scene base = LoadScene(scene_name, overrides);
+  const bool three_d = base.dimension == 3;
   const double t_end = until >= 0 ? until : base.numerics.t_end;
-  const bool feng = !base.has_shear() && base.electric_field &&
+  const bool feng = !three_d && !base.has_shear() && base.electric_field &&
                     base.membrane == MembraneKind::kDrop && base.Ca_E > 0;
   const double fd = base.sigma_r * base.sigma_r + base.sigma_r + 1 - 3 * base.eps_r;
   const double d_feng = fd * base.Ca_E / (3 * (1 + base.sigma_r) * (1 + base.sigma_r));
@@ -76,10 +97,15 @@ int Converge(const std::vector<std::string>& args) {
   for (int n : grids) {
     Result r;
     r.n = n;
-    r.m = static_cast<int>(std::lround(static_cast<double>(n) * base.M / base.N));
     std::vector<std::string> o = overrides;
     o.push_back("N=" + std::to_string(n));
-    o.push_back("M=" + std::to_string(r.m));
+    if (three_d) {
+      r.m = MeshLevelForGrid(base, n);
+      o.push_back("mesh_subdivisions=" + std::to_string(r.m));
+    } else {
+      r.m = static_cast<int>(std::lround(static_cast<double>(n) * base.M / base.N));
+      o.push_back("M=" + std::to_string(r.m));
+    }
     const auto start = std::chrono::steady_clock::now();
     try {
       Simulation sim(LoadScene(scene_name, o));
@@ -98,6 +124,7 @@ int Converge(const std::vector<std::string>& args) {
       r.theta = s.inclination;
       r.time = s.time;
       r.signed_d = std::abs(s.inclination) > M_PI / 4 ? s.dxy : -s.dxy;
+      r.d_field = s.d_field;
     } catch (const std::exception& e) {
       r.error = e.what();
     }
@@ -109,9 +136,10 @@ int Converge(const std::vector<std::string>& args) {
   }
 
   const Result& finest = results.back();
-  std::printf("\n%6s %6s %9s %8s %10s %10s %11s %6s", "N", "M", "t", "D_xy",
+  std::printf("\n%6s %6s %9s %8s %10s %10s %11s %6s", "N", three_d ? "level" : "M", "t", "D_xy",
               feng ? "D(signed)" : "theta/pi", "|D-fine|", "|theta-fine|", "order");
   if (feng) std::printf(" %10s", "|D-Feng|");
+  if (three_d) std::printf(" %9s %10s", "D_z", "|D_z-fine|");
   std::printf(" %9s %8s %9s\n", "steps", "wall s", "ms/step");
   double prev_err = NAN;
   int prev_n = 0;
@@ -134,6 +162,10 @@ int Converge(const std::vector<std::string>& args) {
     else
       std::printf(" %10.3e %11.3e %6.2f", err, terr, order);
     if (feng) std::printf(" %10.3e", std::abs(r.signed_d - d_feng));
+    if (three_d && is_finest) std::printf(" %+9.5f %10s", r.d_field, "-");
+    if (three_d && !is_finest) {
+      std::printf(" %+9.5f %10.3e", r.d_field, std::abs(r.d_field - finest.d_field));
+    }
     std::printf(" %9ld %8.2f %9.3f%s\n", r.steps, r.wall,
                 r.steps > 0 ? 1e3 * r.wall / r.steps : 0.0, r.steady ? " steady" : "");
     if (!is_finest) {
