@@ -1,5 +1,7 @@
 #include "ehd_capsule/electric/fast_iim_solver_3d.h"
 
+#include <omp.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
@@ -126,12 +128,20 @@ void FastIimSolver3D::SetUpBand(const TriangleMesh& surface) {
   band_g_row_.clear();
   band_f_coefficient_.resize(nb);
   band_f_dxi_coefficient_.resize(nb);
-  for (std::size_t b = 0; b < nb; ++b) {
+  // The stencils are independent (threaded); the rows are then laid out in band order, so the
+  // result does not depend on the thread count.
+  std::vector<JumpStencil3D> stencils(nb);
+  const int threads = options_.threads > 0 ? options_.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads) if (threads != 1)
+  for (long b = 0; b < static_cast<long>(nb); ++b) {
     const std::size_t node = band_node_[b];
     const int i = static_cast<int>(node % g.nx);
     const int j = static_cast<int>((node / g.nx) % g.ny);
     const int k = static_cast<int>(node / (static_cast<std::size_t>(g.nx) * g.ny));
-    const JumpStencil3D stencil = MakeJumpStencil(*fit_, Eigen::Vector3d(g.x(i), g.y(j), g.z(k)));
+    stencils[b] = MakeJumpStencil(*fit_, Eigen::Vector3d(g.x(i), g.y(j), g.z(k)));
+  }
+  for (std::size_t b = 0; b < nb; ++b) {
+    const JumpStencil3D& stencil = stencils[b];
     band_vertex_[b] = stencil.vertex;
     band_f_coefficient_[b] = stencil.f_coefficient;
     band_f_dxi_coefficient_[b] = stencil.f_dxi_coefficient;
@@ -150,20 +160,23 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
   const double h = g.h, alpha = options_.fit_radius_h * h;
   const int reach = static_cast<int>(std::ceil(alpha / h)) + 1;
   const Eigen::Matrix3Xd& x = surface.vertices();
-  fit_offset_.assign(1, 0);
-  fit_node_.clear();
-  fit_slot_.clear();
-  fit_gamma_.clear();
-  fit_gamma_t1_.clear();
-  fit_gamma_t2_.clear();
-  fit_gamma_check_.clear();
-  fit_normal_.resize(3, surface.vertex_count());
-  fit_t1_.resize(3, surface.vertex_count());
-  fit_t2_.resize(3, surface.vertex_count());
-  std::vector<std::size_t> nodes;
-  std::vector<Eigen::Vector3d> local;
-  std::vector<double> weight;
-  for (int v = 0; v < surface.vertex_count(); ++v) {
+  const int nv = surface.vertex_count();
+  fit_normal_.resize(3, nv);
+  fit_t1_.resize(3, nv);
+  fit_t2_.resize(3, nv);
+  // One fit per vertex, independent (threaded); laid out in vertex order afterwards, so the
+  // result does not depend on the thread count.
+  struct VertexFit {
+    std::vector<std::size_t> nodes;
+    Eigen::MatrixXd rows;       // m x 3: the c_xi, c_eta1, c_eta2 rows
+    std::vector<double> check;  // the one-degree-lower fit's c_xi row (or c_xi again)
+    std::string error;
+  };
+  std::vector<VertexFit> fits(nv);
+  const int threads = options_.threads > 0 ? options_.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads) if (threads != 1)
+  for (int v = 0; v < nv; ++v) {
+    VertexFit& out = fits[v];
     const SurfacePatch& patch = fit_->patch(v);
     const Eigen::Vector3d normal = (patch.t1 + patch.height[0] * patch.n)
                                        .cross(patch.t2 + patch.height[1] * patch.n)
@@ -174,9 +187,8 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
     fit_normal_.col(v) = normal;
     fit_t1_.col(v) = t1;
     fit_t2_.col(v) = t2;
-    nodes.clear();
-    local.clear();
-    weight.clear();
+    std::vector<Eigen::Vector3d> local;
+    std::vector<double> weight;
     const int ci = static_cast<int>(std::floor((p.x() - g.x0) / h));
     const int cj = static_cast<int>(std::floor((p.y() - g.y0) / h));
     const int ck = static_cast<int>(std::floor((p.z() - g.z0) / h));
@@ -186,13 +198,13 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
           const Eigen::Vector3d r = Eigen::Vector3d(g.x(i), g.y(j), g.z(k)) - p;
           const double dist = r.norm();
           if (dist >= alpha) continue;
-          nodes.push_back(g.index(i, j, k));
+          out.nodes.push_back(g.index(i, j, k));
           local.emplace_back(r.dot(normal) / h, r.dot(t1) / h, r.dot(t2) / h);
           weight.push_back(0.5 * (1.0 + std::cos(kPi * dist / alpha)));  // eq. (67)
         }
       }
     }
-    const int m = static_cast<int>(nodes.size());
+    const int m = static_cast<int>(out.nodes.size());
     // Weighted least squares by the normal equations M c = A^T W y, M = A^T W A (20 x 20 or
     // 10 x 10, coordinates in units of h): only the rows of M^-1 A^T W for c_xi, c_eta1, c_eta2
     // are needed, gamma_k(q) = w_q m_q^T M^-1 e_k, at O(m terms^2) per vertex. A fit whose M is
@@ -219,26 +231,39 @@ void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
              h;
       return true;
     };
-    Eigen::MatrixXd rows, check_rows;
+    Eigen::MatrixXd check_rows;
     int degree = options_.fit_degree;
-    while (degree >= 2 && !fit_rows(degree, rows)) --degree;
+    while (degree >= 2 && !fit_rows(degree, out.rows)) --degree;
     if (degree < 2) {
-      throw SolverError("3D immersed interface: the normal-derivative fit at vertex " +
-                        std::to_string(v) + " has " + std::to_string(m) +
-                        " nodes within fit_radius_h (a quadratic needs 15 in general position); "
-                        "the surface is too close to the box or the grid too coarse");
+      out.error = "3D immersed interface: the normal-derivative fit at vertex " +
+                  std::to_string(v) + " has " + std::to_string(m) +
+                  " nodes within fit_radius_h (a quadratic needs 15 in general position); "
+                  "the surface is too close to the box or the grid too coarse";
+      continue;
     }
     // The one-degree-lower fit, for the resolution check after the solve (the cubic and the
     // quadratic agree to O(h^2) where the field is resolved near the surface).
     const bool has_check = degree == 3 && fit_rows(2, check_rows);
-    const Eigen::VectorXd gamma = rows.col(0), gamma_t1 = rows.col(1), gamma_t2 = rows.col(2);
-    for (int q = 0; q < m; ++q) fit_gamma_check_.push_back(has_check ? check_rows(q, 0) : gamma(q));
-    for (int q = 0; q < m; ++q) {
-      fit_node_.push_back(nodes[q]);
-      fit_slot_.push_back(sides_.side[nodes[q]] > 0 ? slot_[nodes[q]] : -1);
-      fit_gamma_.push_back(gamma(q));
-      fit_gamma_t1_.push_back(gamma_t1(q));
-      fit_gamma_t2_.push_back(gamma_t2(q));
+    out.check.resize(m);
+    for (int q = 0; q < m; ++q) out.check[q] = has_check ? check_rows(q, 0) : out.rows(q, 0);
+  }
+  fit_offset_.assign(1, 0);
+  fit_node_.clear();
+  fit_slot_.clear();
+  fit_gamma_.clear();
+  fit_gamma_t1_.clear();
+  fit_gamma_t2_.clear();
+  fit_gamma_check_.clear();
+  for (int v = 0; v < nv; ++v) {
+    const VertexFit& f = fits[v];
+    if (!f.error.empty()) throw SolverError(f.error);  // the lowest such vertex
+    for (std::size_t q = 0; q < f.nodes.size(); ++q) {
+      fit_node_.push_back(f.nodes[q]);
+      fit_slot_.push_back(sides_.side[f.nodes[q]] > 0 ? slot_[f.nodes[q]] : -1);
+      fit_gamma_.push_back(f.rows(q, 0));
+      fit_gamma_t1_.push_back(f.rows(q, 1));
+      fit_gamma_t2_.push_back(f.rows(q, 2));
+      fit_gamma_check_.push_back(f.check[q]);
     }
     fit_offset_.push_back(static_cast<int>(fit_node_.size()));
   }

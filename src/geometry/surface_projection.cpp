@@ -84,12 +84,19 @@ SurfacePoint SurfaceProjector::Closest(const Eigen::Vector3d& p) const {
   SurfacePoint best;
   best.distance = std::numeric_limits<double>::infinity();
   // Rings of buckets at Chebyshev distance r from the query's bucket. p lies in bucket c, so a
-  // bucket of ring r + 1 or farther is at least r buckets from p: once the best point is that
-  // close, the search is complete. Beyond max_ring every bucket of the mesh has been visited.
+  // bucket of ring r + 1 or farther is at least r buckets plus p's clearance to the faces of its
+  // own bucket from p: once the best point is that close, the search is complete. Beyond max_ring
+  // every bucket of the mesh has been visited.
   const Eigen::Vector3d to_box =
       (p - origin_).cwiseMax(0.0) - (p - origin_).cwiseMin(0.0);  // |p - origin| per axis
   const int max_ring = std::max({extent_[0], extent_[1], extent_[2]}) +
                        static_cast<int>(to_box.maxCoeff() / bucket_) + 2;
+  double clearance = std::numeric_limits<double>::infinity();  // p to its bucket's faces
+  for (int a = 0; a < 3; ++a) {
+    const double offset = p(a) - origin_(a) - c[a] * bucket_;  // in [0, bucket)
+    clearance = std::min({clearance, offset, bucket_ - offset});
+  }
+  clearance = std::max(clearance, 0.0);
   for (int r = 0; r <= max_ring; ++r) {
     for (int i = c[0] - r; i <= c[0] + r; ++i) {
       for (int j = c[1] - r; j <= c[1] + r; ++j) {
@@ -108,7 +115,9 @@ SurfacePoint SurfaceProjector::Closest(const Eigen::Vector3d& p) const {
         }
       }
     }
-    if (best.distance <= r * bucket_) break;
+    // Every bucket of ring r + 1 or farther lies outside the cube of rings 0..r about c, whose
+    // faces are at least r buckets plus p's own clearance in its bucket from p.
+    if (best.distance <= r * bucket_ + clearance) break;
   }
   return best;
 }
