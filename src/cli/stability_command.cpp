@@ -87,7 +87,8 @@ int Stability(const std::vector<std::string>& args) {
       {"Ca_E = 15 (the text's 5)", {"electric.max_Ca_E=15", "Ca_E=15"}},
       {"Ca = 0.6 (the text's 0.2)", {"max_Ca=10", "Ca=0.6"}},
       {"coarse mesh (162 vertices)", {"mesh_subdivisions=2"}},
-      {"touching the walls (L = 1.1 a)", {"geometry.half_width=1.1"}},
+      // N with L: a stays 8 cells (at the scene's N a would grow to N / 2.6).
+      {"near the walls (L = 1.3 a, gap 2.4 h)", {"geometry.half_width=1.3", "N=21"}},
   };
   const std::vector<Case> cases_2d = {
       {"reference", {}},

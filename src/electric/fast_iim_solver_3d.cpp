@@ -403,10 +403,16 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
     std::ostringstream os;
     os << "3D immersed interface: the surface crosses the grid segment from node (" << thin.node[0]
        << ", " << thin.node[1] << ", " << thin.node[2] << ") along " << axis_name[thin.axis]
-       << " twice, " << thin.gap_h
-       << " h apart: a part thinner than the grid spacing h = " << grid3.h
-       << " (e.g. a biconcave dimple), which the stencil cannot see; the electric grid "
-       << "needs h below " << thin.gap_h * grid3.h << " there";
+       << " twice, " << thin.gap_h << " h apart: ";
+    if (thin.gap_h < 0.05) {
+      // No grid resolves that: the sheet doubles back on itself within a sliver of a cell.
+      os << "the surface folds there (a wrinkle or a tangled mesh, not a part any grid "
+            "resolves)";
+    } else {
+      os << "a part thinner than the grid spacing h = " << grid3.h
+         << " (e.g. a biconcave dimple), which the stencil cannot see; the electric grid "
+         << "needs h below " << thin.gap_h * grid3.h << " there";
+    }
     throw SolverError(os.str());
   }
   SetUpBand(surface);

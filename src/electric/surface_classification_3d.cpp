@@ -53,6 +53,15 @@ void ForEachLineCrossing(const Grid3D& g, const TriangleMesh& surface, int axis,
     }
     const double ax = px[order[0]], ay = py[order[0]], bx = px[order[1]], by = py[order[1]],
                  cx = px[order[2]], cy = py[order[2]];
+    const int ia = t[order[0]], ib = t[order[1]], ic = t[order[2]];
+    // The edge function of a shared edge is evaluated from its lower-index vertex in both of its
+    // triangles (and negated in the one that runs it the other way), so the two see exactly
+    // opposite values and the top-left rule stays watertight in floating point; a line through a
+    // vertex or an edge (a centred sphere on an odd grid puts its poles on one) is counted once.
+    const auto edge = [&](int i, double ix, double iy, int j, double jx, double jy, double qx,
+                          double qy) {
+      return i < j ? EdgeFunction(ix, iy, jx, jy, qx, qy) : -EdgeFunction(jx, jy, ix, iy, qx, qy);
+    };
     const double az = pz[order[0]], bz = pz[order[1]], cz = pz[order[2]];
     const double area = std::abs(area2);
     const Eigen::Vector3d face = (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0]));
@@ -71,9 +80,9 @@ void ForEachLineCrossing(const Grid3D& g, const TriangleMesh& surface, int axis,
       const double qy = v0 + (j + 0.5) * h;
       for (int i = i0; i <= i1; ++i) {
         const double qx = u0 + (i + 0.5) * h;
-        const double w0 = EdgeFunction(bx, by, cx, cy, qx, qy);  // weight of a
-        const double w1 = EdgeFunction(cx, cy, ax, ay, qx, qy);  // weight of b
-        const double w2 = EdgeFunction(ax, ay, bx, by, qx, qy);  // weight of c
+        const double w0 = edge(ib, bx, by, ic, cx, cy, qx, qy);  // weight of a
+        const double w1 = edge(ic, cx, cy, ia, ax, ay, qx, qy);  // weight of b
+        const double w2 = edge(ia, ax, ay, ib, bx, by, qx, qy);  // weight of c
         const bool in = (w0 > 0.0 || (w0 == 0.0 && own_bc)) &&
                         (w1 > 0.0 || (w1 == 0.0 && own_ca)) && (w2 > 0.0 || (w2 == 0.0 && own_ab));
         if (!in) continue;
