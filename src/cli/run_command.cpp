@@ -9,6 +9,7 @@
 #include "command.h"
 #include "ehd_capsule/coupling/simulation.h"
 #include "ehd_capsule/coupling/steady_state.h"
+#include "ehd_capsule/geometry/triangle_mesh.h"
 #include "ehd_capsule/io/time_series.h"
 #include "ehd_capsule/io/vtk_output.h"
 #include "ehd_capsule/scene/scene.h"
@@ -21,7 +22,7 @@ const char* kUsage =
     "usage: ehd_sim run SCENE [--set key=value ...] [--steps N | --until T | --until-steady TOL]\n"
     "                  [--csv FILE] [--csv-every N] [--progress SECONDS] [--quiet]\n"
     "                  [--vtk DIR --vtk-every N] [--checkpoint-every N --checkpoint FILE]\n"
-    "                  [--restart FILE]\n\n"
+    "                  [--restart FILE] [--sections FILE --sections-every N]\n\n"
     "Runs SCENE (a name in config/scenes or a path to a .yaml file). Prints the scene, the\n"
     "derived lattice values and the assembled pipeline, then a progress line.\n"
     "  --set key=value   override a scene key (nested: geometry.shape=ellipse); repeatable\n"
@@ -35,14 +36,17 @@ const char* kUsage =
     "  --vtk DIR         ParaView frames (fluid .vti, membrane .vtp, .pvd) every --vtk-every N\n"
     "  --checkpoint FILE --checkpoint-every N   write a checkpoint every N steps (and at the end)\n"
     "  --restart FILE    continue bit-for-bit from a checkpoint of the same scene\n"
+    "  --sections FILE   the membrane's section in the shear plane every --sections-every N\n"
+    "                    steps (default 100) as step,t,point,x,y in units of a about the\n"
+    "                    centroid: the markers in 2D, the cut z = z_centroid of the mesh in 3D\n"
     "Exit status 0 on success, 1 if the simulation stopped on an error (the message names the\n"
     "step and the quantity) or at the step cap numerics.max_steps before its end time, 2 on a\n"
     "usage error.\n";
 
 int RunScene(const std::vector<std::string>& args) {
-  std::string scene_name, csv_path, vtk_dir, checkpoint_path, restart_path;
+  std::string scene_name, csv_path, vtk_dir, checkpoint_path, restart_path, sections_path;
   std::vector<std::string> overrides;
-  long steps = -1, csv_every = 1, vtk_every = 0, checkpoint_every = 0;
+  long steps = -1, csv_every = 1, vtk_every = 0, checkpoint_every = 0, sections_every = 100;
   double until = -1.0, steady_tol = -1.0, progress_s = 2.0;
   bool quiet = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -73,6 +77,10 @@ int RunScene(const std::vector<std::string>& args) {
       checkpoint_every = ParseLong(a, OptionValue(args, i));
     else if (a == "--restart")
       restart_path = OptionValue(args, i);
+    else if (a == "--sections")
+      sections_path = OptionValue(args, i);
+    else if (a == "--sections-every")
+      sections_every = ParseLong(a, OptionValue(args, i));
     else if (!a.empty() && a[0] == '-')
       throw UsageError("unknown option '" + a + "'");
     else if (scene_name.empty())
@@ -86,6 +94,7 @@ int RunScene(const std::vector<std::string>& args) {
   }
   if (steps == 0 || steps < -1) throw UsageError("--steps must be >= 1");
   if (csv_every < 1) throw UsageError("--csv-every must be >= 1");
+  if (sections_every < 1) throw UsageError("--sections-every must be >= 1");
   if (vtk_every < 0 || (!vtk_dir.empty() && vtk_every == 0)) {
     if (!vtk_dir.empty() && vtk_every == 0)
       vtk_every = 100;
@@ -131,6 +140,37 @@ int RunScene(const std::vector<std::string>& args) {
     csv = std::make_unique<TimeSeriesCsv>(csv_path, sim, !restart_path.empty());
     if (restart_path.empty()) csv->Write(sim);
   }
+  std::FILE* sections = nullptr;
+  if (!sections_path.empty()) {
+    sections = std::fopen(sections_path.c_str(), restart_path.empty() ? "w" : "a");
+    if (sections == nullptr) throw UsageError("--sections: cannot write '" + sections_path + "'");
+    if (restart_path.empty()) std::fprintf(sections, "step,t,point,x,y\n");
+  }
+  // The shear-plane section about the centroid, in units of a.
+  auto write_section = [&]() {
+    if (sections == nullptr) return;
+    const SimulationState& s = sim.state();
+    const Eigen::Vector3d c = s.markers.rowwise().mean();
+    const double a = sim.units().radius;
+    std::vector<Eigen::Vector2d> points;
+    if (sim.dimension() == 3) {
+      std::vector<TriangleMesh::Triangle> triangles;
+      for (const auto& t : sim.triangles()) triangles.push_back({t[0], t[1], t[2]});
+      const TriangleMesh mesh(s.markers, triangles);
+      const Eigen::Vector3d centroid = Centroid(mesh);
+      points = CrossSectionZ(mesh, centroid.z());
+      for (auto& p : points) p -= centroid.head<2>();
+    } else {
+      for (int k = 0; k < s.markers.cols(); ++k)
+        points.push_back(s.markers.col(k).head<2>() - c.head<2>());
+    }
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      std::fprintf(sections, "%ld,%.10g,%zu,%.8g,%.8g\n", s.step, s.time, k, points[k].x() / a,
+                   points[k].y() / a);
+    }
+    std::fflush(sections);
+  };
+  if (restart_path.empty()) write_section();
   std::unique_ptr<VtkSeries> vtk;
   if (!vtk_dir.empty()) {
     vtk = std::make_unique<VtkSeries>(vtk_dir);
@@ -164,6 +204,7 @@ int RunScene(const std::vector<std::string>& args) {
       sim.Step();
       if (csv && s.step % csv_every == 0) csv->Write(sim);
       if (vtk && s.step % vtk_every == 0) vtk->WriteFrame(sim);
+      if (s.step % sections_every == 0) write_section();
       if (checkpoint_every > 0 && s.step % checkpoint_every == 0) sim.Save(checkpoint_path);
       if (steady_tol > 0 && monitor.Update(s.time, s.dxy, s.inclination)) {
         steady = true;
@@ -179,10 +220,16 @@ int RunScene(const std::vector<std::string>& args) {
     progress("last state: ");
     std::cerr << "ehd_sim run: simulation stopped: " << e.what() << '\n';
     if (csv) csv->Write(sim);
+    write_section();
+    if (sections != nullptr) std::fclose(sections);
     return 1;
   }
   if (csv && sim.state().step % csv_every != 0) csv->Write(sim);
   if (!checkpoint_path.empty()) sim.Save(checkpoint_path);
+  if (sections != nullptr) {
+    if (sim.state().step % sections_every != 0) write_section();
+    std::fclose(sections);
+  }
   progress("final: ");
   const bool capped = steps <= 0 && !steady && sim.state().time < t_end - 1e-12;
   const double wall =
