@@ -3,7 +3,9 @@
 // bit-for-bit (the CSV of 40 straight steps equals 20 + restart + 20).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -124,6 +126,43 @@ TEST(EhdSim, ThreeDimensionalConvergeRefinesTheMesh) {
   ASSERT_EQ(rows, 2) << r.output;
   EXPECT_GT(d[0], 0.0);
   EXPECT_NEAR(d[0], d[1], 0.01 * d[1]) << r.output;
+}
+
+// `run --sections`: the shear-plane section about the centroid in units of a, one frame per
+// --sections-every steps and the last; a circle of radius 1 at t = 0 (2D markers; the 3D cut of
+// the unit icosphere through its centre, inscribed: radius within 1 % of 1).
+TEST(EhdSim, SectionsAreTheShearPlaneCutInUnitsOfA) {
+  for (const char* scene : {"capsule_shear --set N=32 --set M=32", "sphere_shear --set N=24"}) {
+    const std::string path = TempPath("sections.csv");
+    const Result r = RunSim(std::string("run ") + scene +
+                            " --steps 4 --sections-every 2 --quiet --sections " + path);
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::istringstream lines(ReadFile(path));
+    std::string line;
+    std::getline(lines, line);
+    EXPECT_EQ(line, "step,t,point,x,y");
+    int frames = 0, points = 0;
+    double rmin = 1e9, rmax = 0;
+    long last_step = -1;
+    while (std::getline(lines, line)) {
+      long step = 0;
+      double t = 0, x = 0, y = 0;
+      int point = 0;
+      ASSERT_EQ(std::sscanf(line.c_str(), "%ld,%lf,%d,%lf,%lf", &step, &t, &point, &x, &y), 5);
+      if (step != last_step) ++frames;
+      last_step = step;
+      if (step == 0) {
+        ++points;
+        rmin = std::min(rmin, std::hypot(x, y));
+        rmax = std::max(rmax, std::hypot(x, y));
+      }
+    }
+    EXPECT_EQ(frames, 3) << scene;  // steps 0, 2, 4
+    EXPECT_GT(points, 16) << scene;
+    EXPECT_GT(rmin, 0.99) << scene;
+    EXPECT_LT(rmax, 1.0 + 1e-6) << scene;  // printed to 8 digits
+    std::remove(path.c_str());
+  }
 }
 
 TEST(EhdSim, BadSceneValuesNameTheKey) {
