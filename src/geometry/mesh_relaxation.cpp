@@ -73,17 +73,12 @@ Eigen::Matrix3Xd DropVertexVelocity(const TriangleMesh& mesh, const Eigen::Matri
                                 " velocities for " + std::to_string(n) + " vertices");
   }
   const Eigen::Matrix3Xd& x = mesh.vertices();
-  Eigen::Matrix3Xd normal = Eigen::Matrix3Xd::Zero(3, n);
-  std::vector<double> area(n, 0.0);
+  const Eigen::Matrix3Xd normal = VertexNormals(mesh);
+  std::vector<double> area(n, 0.0);  // a third of each triangle's
   for (const auto& t : mesh.triangles()) {
-    const Eigen::Vector3d f = (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0]));
-    const double third = f.norm() / 6.0;
-    for (int v : t) {
-      normal.col(v) += f;
-      area[v] += third;
-    }
+    const double third = (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0])).norm() / 6.0;
+    for (int v : t) area[v] += third;
   }
-  normal.colwise().normalize();
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   double total = 0.0;
   for (int v = 0; v < n; ++v) {
