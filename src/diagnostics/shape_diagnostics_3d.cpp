@@ -71,21 +71,9 @@ double MeasureMeridionalFlow(const TriangleMesh& mesh, const Eigen::Matrix3Xd& v
     throw std::invalid_argument("MeasureMeridionalFlow: " + std::to_string(velocity.cols()) +
                                 " velocities for " + std::to_string(n) + " vertices");
   }
-  // Vertex areas: a third of each triangle's (enough for a weight; the mixed Voronoi areas of
-  // MeasureSurface cost a cotangent pass).
-  std::vector<double> area(n, 0.0);
+  const std::vector<double> area = VertexThirdAreas(mesh);
   const Eigen::Matrix3Xd& x = mesh.vertices();
-  for (const auto& t : mesh.triangles()) {
-    const double third = (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0])).norm() / 6.0;
-    for (int v : t) area[v] += third;
-  }
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  double total = 0.0;
-  for (int i = 0; i < n; ++i) {
-    mean += area[i] * velocity.col(i);
-    total += area[i];
-  }
-  mean /= total;
+  const Eigen::Vector3d mean = AreaWeightedMean(mesh, area, velocity);
   const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
   double num = 0.0, den = 0.0;
   for (int i = 0; i < n; ++i) {

@@ -72,20 +72,8 @@ Eigen::Matrix3Xd DropVertexVelocity(const TriangleMesh& mesh, const Eigen::Matri
     throw std::invalid_argument("DropVertexVelocity: " + std::to_string(velocity.cols()) +
                                 " velocities for " + std::to_string(n) + " vertices");
   }
-  const Eigen::Matrix3Xd& x = mesh.vertices();
   const Eigen::Matrix3Xd normal = VertexNormals(mesh);
-  std::vector<double> area(n, 0.0);  // a third of each triangle's
-  for (const auto& t : mesh.triangles()) {
-    const double third = (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0])).norm() / 6.0;
-    for (int v : t) area[v] += third;
-  }
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  double total = 0.0;
-  for (int v = 0; v < n; ++v) {
-    mean += area[v] * velocity.col(v);
-    total += area[v];
-  }
-  mean /= total;
+  const Eigen::Vector3d mean = AreaWeightedMean(mesh, VertexThirdAreas(mesh), velocity);
   Eigen::Matrix3Xd out(3, n);
   for (int v = 0; v < n; ++v) {
     out.col(v) = mean + (velocity.col(v) - mean).dot(normal.col(v)) * normal.col(v);

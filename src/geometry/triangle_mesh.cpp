@@ -171,6 +171,27 @@ double BiconcaveVolume(const BiconcaveParameters& p) {
   return 2.0 * kPi * big_r * big_r * big_r * (p.c0 / 3.0 + 2.0 * p.c1 / 15.0 + 8.0 * p.c2 / 105.0);
 }
 
+std::vector<double> VertexThirdAreas(const TriangleMesh& mesh) {
+  std::vector<double> area(mesh.vertex_count(), 0.0);
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  for (const auto& t : mesh.triangles()) {
+    const double third = (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0])).norm() / 6.0;
+    for (int v : t) area[v] += third;
+  }
+  return area;
+}
+
+Eigen::Vector3d AreaWeightedMean(const TriangleMesh& mesh, const std::vector<double>& area,
+                                 const Eigen::Matrix3Xd& field) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double total = 0.0;
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    mean += area[v] * field.col(v);
+    total += area[v];
+  }
+  return mean / total;
+}
+
 double SurfaceArea(const TriangleMesh& mesh) {
   const Eigen::Matrix3Xd& x = mesh.vertices();
   double area = 0.0;

@@ -78,6 +78,13 @@ double BiconcaveVolume(const BiconcaveParameters& p = {});
 
 // Geometry of the current vertex positions.
 double SurfaceArea(const TriangleMesh& mesh);
+// A third of the area of each triangle around each vertex (they sum to the surface area): a
+// cheap vertex weight where the mixed Voronoi areas of MeasureSurface (a cotangent pass) are not
+// needed.
+std::vector<double> VertexThirdAreas(const TriangleMesh& mesh);
+// The vertex-area-weighted (VertexThirdAreas) mean of a per-vertex field (one column each).
+Eigen::Vector3d AreaWeightedMean(const TriangleMesh& mesh, const std::vector<double>& area,
+                                 const Eigen::Matrix3Xd& field);
 double EnclosedVolume(const TriangleMesh& mesh);     // (1/6) sum x_a . (x_b x x_c)
 Eigen::Vector3d Centroid(const TriangleMesh& mesh);  // of the enclosed volume
 
