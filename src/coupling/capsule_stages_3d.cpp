@@ -105,19 +105,24 @@ void ElectricStage3D::Reset() {
   projector_.reset();
 }
 
-double ElectricStage3D::ReinterpolateTraction() {
+bool ElectricStage3D::ReinterpolateTraction(double tolerance) {
   if (!projector_) {
     TriangleMesh solved = body_.mesh;
     solved.SetVertices(solved_vertices_);
     projector_ = std::make_unique<SurfaceProjector>(solved, 1.0);
   }
   const Eigen::Matrix3Xd& x = body_.mesh.vertices();
+  // The feet first, stopping at the first vertex off the solved surface: a shape still changing
+  // fails at once and costs little beyond the solve it triggers.
+  feet_.resize(x.cols());
+  for (int v = 0; v < x.cols(); ++v) {
+    feet_[v] = projector_->Closest(x.col(v));
+    if (feet_[v].distance > tolerance) return false;
+  }
   const auto& triangles = body_.mesh.triangles();
   const SurfaceGeometry geometry = MeasureSurface(body_.mesh);
-  double farthest = 0.0;
   for (int v = 0; v < x.cols(); ++v) {
-    const SurfacePoint foot = projector_->Closest(x.col(v));
-    farthest = std::max(farthest, foot.distance);
+    const SurfacePoint& foot = feet_[v];
     const auto& t = triangles[foot.triangle];
     const Eigen::Vector3d traction = foot.barycentric(0) * solved_traction_.col(t[0]) +
                                      foot.barycentric(1) * solved_traction_.col(t[1]) +
@@ -125,7 +130,7 @@ double ElectricStage3D::ReinterpolateTraction() {
     body_.electric_traction.col(v) = traction;
     body_.electric_force.col(v) = traction * geometry.vertex_area[v];
   }
-  return farthest;
+  return true;
 }
 
 const std::vector<double>& ElectricStage3D::potential() const { return solver_->potential(); }
@@ -151,7 +156,7 @@ void ElectricStage3D::Run(long step) {
       // The vertices moved; if the surface did not (tank-treading along a steady shape), the
       // solved traction field, re-interpolated at the moved vertices, is still the answer.
       // (If the surface did move, the solve below replaces the re-interpolated forces.)
-      if (ReinterpolateTraction() <= scene_.numerics.electric_shape_tolerance) {
+      if (ReinterpolateTraction(scene_.numerics.electric_shape_tolerance)) {
         vertices_at_last_solve_ = body_.mesh.vertices();
         return;
       }

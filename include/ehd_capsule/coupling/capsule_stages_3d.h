@@ -70,10 +70,11 @@ class ElectricStage3D : public StepStage {
  private:
   const Scene& scene_;
   MembraneSurface3D& body_;
-  // Re-interpolates the last solve's traction at the current vertices (closest points on the
-  // solved surface, barycentric weights) and sets the forces from it; returns the largest
-  // distance of a vertex from the solved surface (cells).
-  double ReinterpolateTraction();
+  // If every vertex lies within `tolerance` cells of the last solve's surface, re-interpolates
+  // that solve's traction at the current vertices (closest points on the solved surface,
+  // barycentric weights), sets the forces from it and returns true. Otherwise returns false at
+  // the first vertex beyond it, the forces untouched (a re-solve follows).
+  bool ReinterpolateTraction(double tolerance);
 
   std::unique_ptr<LeakyDielectricSolver3D> solver_;
   Eigen::Matrix3Xd vertices_at_last_solve_;  // at the last force update (solve or re-interpolation)
@@ -82,6 +83,7 @@ class ElectricStage3D : public StepStage {
   // The surface and traction of the last solve (numerics.electric_shape_tolerance > 0).
   Eigen::Matrix3Xd solved_vertices_, solved_traction_;
   std::unique_ptr<SurfaceProjector> projector_;  // of the solved surface, rebuilt on demand
+  std::vector<SurfacePoint> feet_;               // ReinterpolateTraction scratch
 };
 
 class MembraneStage3D : public StepStage {
