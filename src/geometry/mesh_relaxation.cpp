@@ -1,5 +1,7 @@
 #include "ehd_capsule/geometry/mesh_relaxation.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
