@@ -132,9 +132,9 @@ int RunEforce(const std::vector<std::string>& args) {
       sigma_r = 1.75;  // song2019 ch. 6, case A
       eps_r = 3.5;
     }
-    if (sigma_r > 10.0) {
+    if (sigma_r > 1000.0) {
       throw UsageError("--sigma-ratio " + std::to_string(sigma_r) +
-                       ": the 3D solver accepts at most 10 (max_inner_ratio)");
+                       ": the 3D solver accepts at most 1000 (max_inner_ratio)");
     }
     return RunEforce3D(sigma_r, eps_r);
   }

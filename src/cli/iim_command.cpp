@@ -93,6 +93,11 @@ int RunIim3D(const std::vector<std::string>& args) {
         if (n < 8) throw UsageError("--grids: each N must be >= 8, got " + std::to_string(n));
     } else if (a == "--max-fit-disagreement") {
       options.max_fit_disagreement = ParseDouble(a, OptionValue(args, i));
+    } else if (a == "--max-harmonic-degree") {
+      options.max_harmonic_degree = static_cast<int>(ParseLong(a, OptionValue(args, i)));
+      if (options.max_harmonic_degree < 2 || options.max_harmonic_degree > 64) {
+        throw UsageError("--max-harmonic-degree must be in [2, 64]");
+      }
     } else if (a == "--max-inner-ratio") {
       options.max_inner_ratio = ParseDouble(a, OptionValue(args, i));
     } else if (a == "--gmres-tolerance") {
@@ -119,17 +124,19 @@ int RunIim3D(const std::vector<std::string>& args) {
     throw UsageError(std::string("--example: ") + err.what());
   }
   if (csv) {
-    std::cout << "example,N,vertices,sigma_minus,sigma_plus,linf_phi,order_phi,linf_g,order_g,"
-                 "linf_traction,order_traction,fit_error,fit_disagreement,iterations,solve_ms,"
-                 "poisson_solves,poisson_ms,warm_iterations,warm_ms,status\n";
+    std::cout
+        << "example,N,vertices,sigma_minus,sigma_plus,linf_phi,order_phi,linf_g,order_g,"
+           "linf_traction,order_traction,fit_error,fit_disagreement,iterations,solve_ms,"
+           "poisson_solves,poisson_ms,warm_iterations,warm_ms,harmonic_degree,flux_balance_error,"
+           "status\n";
   } else {
     std::printf("3D example %s: %s\nsigma- = %g, sigma+ = %g, eps- = %g, eps+ = %g\n",
                 e.name.c_str(), e.description.c_str(), sigma_minus, sigma_plus, eps_minus,
                 eps_plus);
-    std::printf("%5s %8s %10s %6s %10s %6s %10s %6s %10s %9s %5s %9s %7s %9s%s\n", "N", "vertices",
-                "Linf phi", "order", "[phi_n]", "order", "traction", "order", "fit(exact)",
-                "fit dis.", "iter", "ms/solve", "solves", "Poisson ms",
-                warm ? "  warm iter  warm ms" : "");
+    std::printf("%5s %8s %10s %6s %10s %6s %10s %6s %10s %9s %5s %9s %7s %9s %3s %9s%s\n", "N",
+                "vertices", "Linf phi", "order", "[phi_n]", "order", "traction", "order",
+                "fit(exact)", "fit dis.", "iter", "ms/solve", "solves", "Poisson ms", "L",
+                "flux err", warm ? "  warm iter  warm ms" : "");
   }
   Errors3D previous;
   int previous_n = 0, refused = 0;
@@ -146,7 +153,7 @@ int RunIim3D(const std::vector<std::string>& args) {
     } catch (const SolverError& err) {
       ++refused;
       if (csv) {
-        std::printf("%s,%d,%d,%g,%g,,,,,,,,,,,,,refused: %s\n", e.name.c_str(), n,
+        std::printf("%s,%d,%d,%g,%g,,,,,,,,,,,,,,,refused: %s\n", e.name.c_str(), n,
                     mesh.vertex_count(), sigma_minus, sigma_plus, err.what());
       } else {
         std::printf("%5d %8d   refused: %s\n", n, mesh.vertex_count(), err.what());
@@ -156,6 +163,8 @@ int RunIim3D(const std::vector<std::string>& args) {
     }
     const int solves = solver.poisson_solves();
     const double disagreement = solver.fit_disagreement();
+    const int harmonic_degree = solver.harmonic_degree();
+    const double flux_error = solver.flux_balance_error();
     // The normal-derivative operator on its own: phi_n^- from the exact grid potential and the
     // exact [phi_n], against the exact phi_n^-.
     double fit_error = 0;
@@ -211,14 +220,17 @@ int RunIim3D(const std::vector<std::string>& args) {
                  ot = order(err.traction, previous.traction);
     if (csv) {
       std::printf(
-          "%s,%d,%d,%g,%g,%.6e,%.3f,%.6e,%.3f,%.6e,%.3f,%.6e,%.6e,%d,%.2f,%d,%.3f,%d,%.2f,ok\n",
+          "%s,%d,%d,%g,%g,%.6e,%.3f,%.6e,%.3f,%.6e,%.3f,%.6e,%.6e,%d,%.2f,%d,%.3f,%d,%.2f,%d,%.3e,"
+          "ok\n",
           e.name.c_str(), n, mesh.vertex_count(), sigma_minus, sigma_plus, err.phi, op, err.g, og,
           err.traction, ot, fit_error, disagreement, report.iterations, report.solve_ms, solves,
-          poisson_ms, warm_iterations, warm_ms);
+          poisson_ms, warm_iterations, warm_ms, harmonic_degree, flux_error);
     } else {
-      std::printf("%5d %8d %10.3e %6.2f %10.3e %6.2f %10.3e %6.2f %10.2e %9.2e %5d %9.1f %7d %9.2f",
-                  n, mesh.vertex_count(), err.phi, op, err.g, og, err.traction, ot, fit_error,
-                  disagreement, report.iterations, report.solve_ms, solves, poisson_ms);
+      std::printf(
+          "%5d %8d %10.3e %6.2f %10.3e %6.2f %10.3e %6.2f %10.2e %9.2e %5d %9.1f %7d %9.2f %3d "
+          "%9.2e",
+          n, mesh.vertex_count(), err.phi, op, err.g, og, err.traction, ot, fit_error, disagreement,
+          report.iterations, report.solve_ms, solves, poisson_ms, harmonic_degree, flux_error);
       if (warm) std::printf("  %9d %8.1f", warm_iterations, warm_ms);
       std::printf("\n");
     }
@@ -411,13 +423,17 @@ const CommandRegistration kIim(
      "                   [--sigma-minus S] [--sigma-plus S] [--eps-minus E] [--eps-plus E]\n"
      "                   [--grids 32,48,64,96] [--max-inner-ratio R] [--gmres-tolerance TOL]\n"
      "                   [--max-fit-disagreement F] [--mesh-level L] [--warm] [--csv]\n"
+     "                   [--max-harmonic-degree L]\n"
      "The 3D fast IIM (FastIimSolver3D) on N^3 grids of [-1,1]^3, the mesh level the coarsest\n"
      "with edges <= 1.5 h (or --mesh-level: icosphere level, 4 = 2562 vertices): per N the\n"
      "L-inf error of phi over the nodes, of [phi_n] and of the Maxwell traction (eps-, eps+;\n"
      "default 3.5, 1) at the vertices, observed orders; 'fit(exact)', the phi_n^- error of the\n"
      "normal-derivative fit applied to the exact potential (the operator on its own);\n"
      "'fit dis.', the cubic/quadratic disagreement the solver checks; GMRES iterations, ms per\n"
-     "solve, Poisson solves per solve and the time of one Poisson solve of that size.\n"
+     "solve, Poisson solves per solve and the time of one Poisson solve of that size; 'L', the\n"
+     "degree of the spherical-harmonic basis of [phi_n] (sigma-/sigma+ above\n"
+     "harmonic_basis_min_ratio = 10; 0: vertex values) and 'flux err', the flux balance's\n"
+     "quadrature error estimate relative to max |[phi_n]|.\n"
      "--warm: re-solve with the surface moved by 0.01 h from the previous G.\n"
      "A refused solve (unresolved surface, sigma-/sigma+ > max-inner-ratio, failed checks) is\n"
      "a row saying why; the exit status is then 1.\n",

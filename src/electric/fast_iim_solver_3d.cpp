@@ -12,6 +12,7 @@
 #include <string>
 
 #include "ehd_capsule/electric/interface_jumps_3d.h"
+#include "ehd_capsule/geometry/spherical_harmonics.h"
 
 namespace ehd {
 namespace {
@@ -356,6 +357,133 @@ void FastIimSolver3D::PotentialAndNormalDerivative(const double* g, bool with_da
   }
 }
 
+void FastIimSolver3D::SetUpHarmonicBasis(int level, int degree) {
+  if (level == basis_level_ && degree == basis_degree_) return;
+  const TriangleMesh sphere = IcosphereMesh(level, 1.0);
+  basis_ = RealSphericalHarmonics(sphere.vertices(), degree);
+  const std::vector<double> area = VertexThirdAreas(sphere);
+  basis_sphere_area_ = Eigen::Map<const Eigen::VectorXd>(area.data(), sphere.vertex_count());
+  basis_level_ = level;
+  basis_degree_ = degree;
+}
+
+namespace {
+
+// Vertex weights for surface integrals on a mesh of icosphere connectivity: the third areas of
+// its submeshes at `level` and below, Richardson-extrapolated `steps` times (the error of the
+// third-area rule on these nested meshes is an even series in the edge length, measured: each
+// step gains a factor 16, then 64, per level), on the first 10 * 4^level + 2 vertices of `mesh`.
+// steps <= level.
+Eigen::VectorXd ExtrapolatedVertexWeights(const TriangleMesh& mesh, int level, int steps) {
+  if (steps == 0) {
+    const std::vector<double> a = VertexThirdAreas(IcosphereSubmesh(mesh, level));
+    return Eigen::Map<const Eigen::VectorXd>(a.data(), static_cast<Eigen::Index>(a.size()));
+  }
+  // R_s(level) = (4^s R_{s-1}(level) - R_{s-1}(level - 1)) / (4^s - 1).
+  Eigen::VectorXd q = ExtrapolatedVertexWeights(mesh, level, steps - 1);
+  const Eigen::VectorXd below = ExtrapolatedVertexWeights(mesh, level - 1, steps - 1);
+  const double factor = std::pow(4.0, steps);
+  q *= factor;
+  q.head(below.size()) -= below;
+  return q / (factor - 1.0);
+}
+
+}  // namespace
+
+GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
+                                                  const InterfaceProblem3D& problem, int level,
+                                                  std::vector<double>& g) {
+  const int nv = surface.vertex_count();
+  const double jump = sigma_plus_ - sigma_minus_;
+  const double scale = sigma_plus_ / jump;
+  const bool with_source = !problem.f.empty();
+  if (with_source && !std::isfinite(problem.interior_source_integral)) {
+    throw std::invalid_argument(
+        "FastIimSolver3D: f is given at sigma^-/sigma^+ above harmonic_basis_min_ratio without "
+        "interior_source_integral (the integral of f^-/sigma^- over the inside, which the flux "
+        "balance needs)");
+  }
+  // The flux balance: mu = (mean(v)/[sigma] - flux/area) / scale, with the vertex weights
+  // extrapolated twice (levels L, L - 1, L - 2); the same from the level below estimates its
+  // error (divided by 63: the rule's error falls 64x per level, measured on the sphere,
+  // ellipsoid and red cell).
+  const auto flux_mean = [&](const Eigen::VectorXd& q, double* area_out) {
+    double area = 0, integral_v = 0;
+    for (int i = 0; i < q.size(); ++i) {
+      area += q(i);
+      integral_v += q(i) * v_[i];
+    }
+    if (area_out) *area_out = area;
+    const double flux = with_source ? problem.interior_source_integral : 0.0;
+    return (integral_v / jump - flux) / area / scale;
+  };
+  const Eigen::VectorXd q = ExtrapolatedVertexWeights(surface, level, 2);
+  double area = 0;
+  const double mu = flux_mean(q, &area);
+  const Eigen::VectorXd mean_weight = q / area;
+  const double mu_error =
+      level >= 3
+          ? std::abs(mu - flux_mean(ExtrapolatedVertexWeights(surface, level - 1, 2), nullptr)) /
+                63.0
+          : std::abs(mu - flux_mean(ExtrapolatedVertexWeights(surface, level, 1), nullptr));
+  // Degree: shortest wavelength 2 pi R / L >= harmonic_wavelength_h h, R of the same area, and
+  // at least four vertices per basis function.
+  const double radius = std::sqrt(area / (4.0 * 3.14159265358979323846));
+  int degree = static_cast<int>(std::floor(2.0 * 3.14159265358979323846 * radius /
+                                           (options_.harmonic_wavelength_h * grid().h)));
+  degree = std::min(degree, options_.max_harmonic_degree);
+  while (degree > 1 && SphericalHarmonicCount(degree) * 4 > nv) --degree;
+  if (degree < 2) {
+    std::ostringstream os;
+    os << "3D immersed interface: sigma^-/sigma^+ = " << sigma_minus_ / sigma_plus_
+       << " needs [phi_n] in a harmonic basis of degree >= 2, but the surface (radius " << radius
+       << " = " << radius / grid().h << " h, " << nv << " vertices) allows only degree " << degree
+       << "; refine the grid or the mesh";
+    throw SolverError(os.str());
+  }
+  SetUpHarmonicBasis(level, degree);
+  harmonic_degree_ = degree;
+  const std::vector<double> third = VertexThirdAreas(surface);
+  Eigen::VectorXd test_weight(nv);
+  for (int i = 0; i < nv; ++i) test_weight(i) = third[i] / area;
+  const int k = static_cast<int>(basis_.cols());
+  // R(G) = dn^-(G) + scale G - v/[sigma]; deflated: A G - (m.G) 1 = -R(0) - mu 1; tested with Y.
+  PotentialAndNormalDerivative(std::vector<double>(nv, 0.0).data(), true, phi_work_, dn_work_);
+  Eigen::VectorXd rhs_vertex(nv);
+  for (int v = 0; v < nv; ++v) rhs_vertex(v) = -(dn_work_[v] - v_[v] / jump) - mu;
+  const Eigen::VectorXd b = basis_.transpose() * test_weight.cwiseProduct(rhs_vertex);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(k);
+  if (static_cast<int>(g.size()) == nv) {  // warm start: the guess projected on the basis
+    const Eigen::VectorXd gv = Eigen::Map<const Eigen::VectorXd>(g.data(), nv);
+    x = basis_.transpose() * basis_sphere_area_.cwiseProduct(gv);
+  }
+  std::vector<double> gv(nv);
+  const RestartedGmres::MatVec apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    const Eigen::VectorXd gvec = basis_ * in;
+    for (int v = 0; v < nv; ++v) gv[v] = gvec(v);
+    PotentialAndNormalDerivative(gv.data(), false, phi_work_, dn_work_);
+    const double mean = mean_weight.dot(gvec.head(mean_weight.size()));
+    Eigen::VectorXd r(nv);
+    for (int v = 0; v < nv; ++v) r(v) = dn_work_[v] + scale * gvec(v) - mean;
+    out = basis_.transpose() * test_weight.cwiseProduct(r);
+  };
+  const GmresResult result = gmres_.Solve(apply, b, x, options_.gmres);
+  const Eigen::VectorXd gvec = basis_ * x;
+  g.assign(gvec.data(), gvec.data() + nv);
+  const double gmax = std::max(gvec.cwiseAbs().maxCoeff(), 1e-300);
+  flux_balance_error_ = mu_error / gmax;
+  if (result.converged && flux_balance_error_ > options_.max_flux_balance_error) {
+    std::ostringstream os;
+    os << "3D immersed interface: at sigma^-/sigma^+ = " << sigma_minus_ / sigma_plus_
+       << " the mean of [phi_n] from the flux balance is uncertain by " << flux_balance_error_
+       << " of max |[phi_n]| (> max_flux_balance_error = " << options_.max_flux_balance_error
+       << "): the surface quadrature of [sigma phi_n] (and of f) is amplified by the ratio; "
+          "refine the mesh";
+    throw SolverError(os.str());
+  }
+  return result;
+}
+
 InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
                                             const InterfaceProblem3D& problem,
                                             std::vector<double>& g, std::vector<double>& phi) {
@@ -384,15 +512,26 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
   }
   sigma_minus_ = problem.sigma_minus;
   sigma_plus_ = problem.sigma_plus;
-  if (sigma_minus_ / sigma_plus_ > options_.max_inner_ratio) {
+  const double inner_ratio = sigma_minus_ / sigma_plus_;
+  if (inner_ratio > options_.max_inner_ratio) {
     std::ostringstream os;
-    os << "3D immersed interface: sigma^-/sigma^+ = " << sigma_minus_ / sigma_plus_
-       << " > max_inner_ratio = " << options_.max_inner_ratio
-       << ": the Schur system's near-null modes for a more conducting inside are not treated in "
-          "3D yet (the 2D solver's control basis and verification), so the answer could not be "
-          "trusted";
+    os << "3D immersed interface: sigma^-/sigma^+ = " << inner_ratio
+       << " > max_inner_ratio = " << options_.max_inner_ratio;
     throw SolverError(os.str());
   }
+  const bool harmonic = inner_ratio > options_.harmonic_basis_min_ratio;
+  const int level = harmonic ? IcosphereLevel(surface) : -1;
+  if (harmonic && level < 2) {
+    std::ostringstream os;
+    os << "3D immersed interface: sigma^-/sigma^+ = " << inner_ratio
+       << " > harmonic_basis_min_ratio = " << options_.harmonic_basis_min_ratio
+       << " needs a mesh of icosphere connectivity (IcosphereMesh or a shape mapped from it) at "
+          "subdivision level >= 2 for the harmonic basis of [phi_n]"
+       << (level < 0 ? "; this mesh is not one" : "; this one is coarser");
+    throw SolverError(os.str());
+  }
+  harmonic_degree_ = 0;
+  flux_balance_error_ = 0;
   poisson_solves_ = 0;
   fit_ = std::make_unique<LocalSurfaceFit>(surface, 2.0 * grid3.h, 2, 3, options_.threads);
   CheckResolution(surface);
@@ -452,22 +591,28 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
     for (int v = 0; v < nv; ++v) g[v] = v_[v] / sigma_plus_;
     report.converged = true;
   } else {
-    const double scale = sigma_plus_ / jump;
-    // R(G) = dn^-(G) + scale G - v/[sigma]; A G = R(G) - R(0), b = -R(0).
-    PotentialAndNormalDerivative(std::vector<double>(nv, 0.0).data(), true, phi_work_, dn_work_);
-    Eigen::VectorXd b(nv), x(nv);
-    for (int v = 0; v < nv; ++v) {
-      b(v) = -(dn_work_[v] - v_[v] / jump);
-      x(v) = g[v];
+    GmresResult r;
+    if (harmonic) {
+      r = SolveInHarmonicBasis(surface, problem, level, g);
+    } else {
+      const double scale = sigma_plus_ / jump;
+      // R(G) = dn^-(G) + scale G - v/[sigma]; A G = R(G) - R(0), b = -R(0).
+      PotentialAndNormalDerivative(std::vector<double>(nv, 0.0).data(), true, phi_work_, dn_work_);
+      Eigen::VectorXd b(nv), x(nv);
+      for (int v = 0; v < nv; ++v) {
+        b(v) = -(dn_work_[v] - v_[v] / jump);
+        x(v) = g[v];
+      }
+      std::vector<double> gv(nv);
+      const RestartedGmres::MatVec apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+        for (int v = 0; v < nv; ++v) gv[v] = in(v);
+        PotentialAndNormalDerivative(gv.data(), false, phi_work_, dn_work_);
+        out.resize(nv);
+        for (int v = 0; v < nv; ++v) out(v) = dn_work_[v] + scale * in(v);
+      };
+      r = gmres_.Solve(apply, b, x, options_.gmres);
+      for (int v = 0; v < nv; ++v) g[v] = x(v);
     }
-    std::vector<double> gv(nv);
-    const RestartedGmres::MatVec apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-      for (int v = 0; v < nv; ++v) gv[v] = in(v);
-      PotentialAndNormalDerivative(gv.data(), false, phi_work_, dn_work_);
-      out.resize(nv);
-      for (int v = 0; v < nv; ++v) out(v) = dn_work_[v] + scale * in(v);
-    };
-    const GmresResult r = gmres_.Solve(apply, b, x, options_.gmres);
     report.iterations = r.iterations;
     report.residual = r.residual;
     report.converged = r.converged;
@@ -478,7 +623,6 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
          << "); raise gmres.max_iterations or check the surface";
       throw SolverError(os.str());
     }
-    for (int v = 0; v < nv; ++v) g[v] = x(v);
   }
   PotentialAndNormalDerivative(g.data(), true, phi, dn_minus_);
   CheckFitAgreement(phi, g);

@@ -6,6 +6,8 @@
 namespace ehd {
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+
 // c: the point source of phi^+, inside the surface, away from it.
 void SmoothPair(InterfaceExample3D& e, const Eigen::Vector3d& c) {
   e.phi_minus = [](const Eigen::Vector3d& p) {
@@ -62,6 +64,7 @@ InterfaceExample3D MakeInterfaceExample3D(const std::string& name, double sigma_
     };
     e.normal = [](const Eigen::Vector3d& p) -> Eigen::Vector3d { return p.normalized(); };
     e.mesh = [radius](int level) { return IcosphereMesh(level, radius); };
+    e.inside_volume = 4.0 / 3.0 * kPi * radius * radius * radius;
     e.boundaries.x_min = e.boundaries.x_max = BoundaryKind::kNeumann;
     e.boundaries.y_min = e.boundaries.y_max = BoundaryKind::kNeumann;
   } else if (name == "sphere") {
@@ -69,6 +72,7 @@ InterfaceExample3D MakeInterfaceExample3D(const std::string& name, double sigma_
     SmoothPair(e, Eigen::Vector3d(0.1, -0.05, 0.02));
     e.normal = [](const Eigen::Vector3d& p) -> Eigen::Vector3d { return p.normalized(); };
     e.mesh = [](int level) { return IcosphereMesh(level, 0.5); };
+    e.inside_volume = 4.0 / 3.0 * kPi * 0.125;
   } else if (name == "ellipsoid") {
     e.description = "ellipsoid 0.6 x 0.45 x 0.35, [phi], [sigma phi_n] and f non-zero";
     SmoothPair(e, Eigen::Vector3d(0.1, -0.05, 0.02));
@@ -77,6 +81,7 @@ InterfaceExample3D MakeInterfaceExample3D(const std::string& name, double sigma_
       return Eigen::Vector3d(p.x() / (ax * ax), p.y() / (ay * ay), p.z() / (az * az)).normalized();
     };
     e.mesh = [=](int level) { return EllipsoidMesh(level, ax, ay, az); };
+    e.inside_volume = 4.0 / 3.0 * kPi * ax * ay * az;
   } else if (name == "biconcave") {
     e.description = "biconcave red-cell surface a = 0.45 (non-convex), the ellipsoid's phi";
     SmoothPair(e, Eigen::Vector3d(0.38, 0.0, 0.15));  // in the rim
@@ -92,6 +97,7 @@ InterfaceExample3D MakeInterfaceExample3D(const std::string& name, double sigma_
       return Eigen::Vector3d(-0.5 * dq * p.x(), 2 * p.y(), -0.5 * dq * p.z()).normalized();
     };
     e.mesh = [shape](int level) { return BiconcaveMesh(level, shape); };
+    e.inside_volume = BiconcaveVolume(shape);
   } else {
     throw std::invalid_argument("unknown 3D interface example '" + name +
                                 "' (sphere_field, sphere, ellipsoid, biconcave)");
@@ -112,6 +118,7 @@ InterfaceProblem3D SampleInterfaceProblem3D(const InterfaceExample3D& e, const G
           sides.side[c] > 0 ? e.sigma_plus * e.laplacian_plus : e.sigma_minus * e.laplacian_minus;
     }
     p.f_over_sigma_jump.assign(mesh.vertex_count(), e.laplacian_plus - e.laplacian_minus);
+    p.interior_source_integral = e.laplacian_minus * e.inside_volume;
   }
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     const Eigen::Vector3d x = mesh.vertices().col(v), n = e.normal(x);

@@ -315,7 +315,7 @@ TEST(Simulation3D, SceneKeysAreValidatedForThreeDimensions) {
   refused({"M=64"}, "mesh_subdivisions");
   refused({"V=2"}, "viscosity contrast is not built in 3D");
   refused({"Ca_E=0.1"}, "sigma_r");
-  refused({"Ca_E=0.1", "sigma_r=1000", "eps_r=2"}, "out of range in 3D: accepted [1e-4, 10]");
+  refused({"Ca_E=0.1", "sigma_r=2000", "eps_r=2"}, "out of range in 3D: accepted [1e-4, 1000]");
   refused({"membrane=drop"}, "surface tension only");
   refused({"geometry.shape=circle"}, "sphere | biconcave");
   refused({"law=skalak"}, "'C' missing");

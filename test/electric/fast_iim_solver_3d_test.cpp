@@ -1,12 +1,14 @@
 // 3D fast immersed interface method (electric/fast_iim_solver_3d.h) against exact solutions:
 // a sphere in a uniform field (the leaky-dielectric conduction problem, [phi] = 0, [sigma phi_n]
-// = 0) at conductivity ratios sigma^-/sigma^+ = 0.1, 0.5, 2 and 10, a general problem on an
-// ellipsoid ([phi], [sigma phi_n] and f all non-zero) and on the non-convex red-cell surface
-// (electric/interface_examples_3d.h). The potential and [phi_n] at the vertices must converge at
-// second order, and so must the Maxwell traction at the vertices and the grid field
-// E = -grad phi (observed orders printed); refusals (an inner conductivity ratio not treated, an
-// unresolved curvature, a coarse mesh, a dimple thinner than h, an unresolved potential) are
-// checked by name.
+// = 0) at conductivity ratios sigma^-/sigma^+ = 0.1, 0.5, 2, 10 and 1000, a general problem on an
+// ellipsoid ([phi], [sigma phi_n] and f all non-zero) at 1/10, 10 and 1000 and on the non-convex
+// red-cell surface (electric/interface_examples_3d.h). The potential and [phi_n] at the vertices
+// must converge at second order, and so must the Maxwell traction at the vertices and the grid
+// field E = -grad phi (observed orders printed). Above sigma^-/sigma^+ = 10 the solver seeks
+// [phi_n] in a spherical-harmonic basis with the flux balance deflated; without it GMRES stalls at
+// 1000:1. Refusals (a ratio above max_inner_ratio, a mesh the basis cannot parametrise, a source
+// without its interior integral, an unresolved curvature, a coarse mesh, a dimple thinner than h,
+// an unresolved potential) are checked by name.
 #include "ehd_capsule/electric/fast_iim_solver_3d.h"
 
 #include <gtest/gtest.h>
@@ -148,6 +150,9 @@ TEST(FastIimSolver3D, SphereInAFieldMoreConductingInside) { ExpectSecondOrderSph
 TEST(FastIimSolver3D, SphereInAFieldTenTimesMoreConductingInside) {
   ExpectSecondOrderSphere(10.0, 1.0);
 }
+TEST(FastIimSolver3D, SphereInAFieldThousandTimesMoreConductingInside) {
+  ExpectSecondOrderSphere(1000.0, 1.0);
+}
 
 // A shared example (electric/interface_examples_3d.h) on N^3: max errors of phi over the nodes
 // and of [phi_n] at the vertices.
@@ -177,9 +182,10 @@ Errors SharedExample(const std::string& name, int n, double sigma_minus, double 
   return out;
 }
 
-// The ellipsoid with [phi], [sigma phi_n] and f non-zero, at sigma^-/sigma^+ = 1/10 and 10.
+// The ellipsoid with [phi], [sigma phi_n] and f non-zero, at sigma^-/sigma^+ = 1/10, 10 and 1000
+// (the last in the harmonic basis, with the flux balance's extrapolated quadrature).
 TEST(FastIimSolver3D, GeneralProblemOnAnEllipsoid) {
-  for (const double ratio : {0.1, 10.0}) {
+  for (const double ratio : {0.1, 10.0, 1000.0}) {
     const int grids[3] = {24, 48, 96};
     Errors e[3];
     for (int r = 0; r < 3; ++r) {
@@ -240,17 +246,65 @@ TEST(FastIimSolver3D, RefusesADimpleThinnerThanTheGrid) {
   }
 }
 
+// The need for the basis: at 1000:1 GMRES on the vertex values of [phi_n] stalls (the near-null
+// modes' eigenvalues, about -1/999, are below the discretisation error of phi_n^-), and the
+// solver says so instead of returning its iterate.
+TEST(FastIimSolver3D, VertexValuesStallAtThousandToOne) {
+  const InterfaceExample3D e = MakeInterfaceExample3D("ellipsoid", 1000.0, 1.0);
+  const Grid3D grid = e.MakeGrid(32);
+  const TriangleMesh mesh = e.MeshFor(grid.h);
+  FastIim3DOptions options;
+  options.harmonic_basis_min_ratio = 1e4;  // vertex values
+  options.gmres.max_iterations = 200;
+  FastIimSolver3D solver(grid, e.boundaries, options);
+  const InterfaceProblem3D problem =
+      SampleInterfaceProblem3D(e, grid, mesh, ClassifyNodes(grid, mesh));
+  std::vector<double> g, phi;
+  try {
+    solver.Solve(mesh, problem, g, phi);
+    FAIL() << "GMRES on the vertex values converged at 1000:1";
+  } catch (const SolverError& err) {
+    EXPECT_NE(std::string(err.what()).find("did not converge"), std::string::npos) << err.what();
+  }
+  FastIimSolver3D basis_solver(grid, e.boundaries);
+  g.clear();
+  const InterfaceSolveReport report = basis_solver.Solve(mesh, problem, g, phi);
+  EXPECT_LE(report.iterations, 30);
+  EXPECT_GE(basis_solver.harmonic_degree(), 8);
+  EXPECT_LT(basis_solver.flux_balance_error(), 1e-3);
+}
+
 TEST(FastIimSolver3D, RefusesWhatItCannotTrust) {
   const Grid3D grid{20, 20, 20, 0.1, -1, -1, -1};
   FastIimSolver3D solver(grid, PoissonBoundaries3D{});
   std::vector<double> g, phi;
   InterfaceProblem3D problem;
-  problem.sigma_minus = 100;
+  problem.sigma_minus = 2000;
   try {
     solver.Solve(IcosphereMesh(3, 0.5), problem, g, phi);
-    FAIL() << "a ratio of 100 was accepted";
+    FAIL() << "a ratio of 2000 was accepted";
   } catch (const SolverError& e) {
     EXPECT_NE(std::string(e.what()).find("max_inner_ratio"), std::string::npos) << e.what();
+  }
+  // Above 10 the harmonic basis needs the icosphere parametrisation: the same sphere with its
+  // triangles listed in another order is refused.
+  problem.sigma_minus = 100;
+  {
+    const TriangleMesh sphere = IcosphereMesh(3, 0.5);
+    std::vector<TriangleMesh::Triangle> reordered = sphere.triangles();
+    std::swap(reordered[3], reordered[7]);
+    try {
+      solver.Solve(TriangleMesh(sphere.vertices(), reordered), problem, g, phi);
+      FAIL() << "a mesh of unknown parametrisation was accepted at 100:1";
+    } catch (const SolverError& e) {
+      EXPECT_NE(std::string(e.what()).find("icosphere connectivity"), std::string::npos)
+          << e.what();
+    }
+    // A source without the integral the flux balance needs.
+    InterfaceProblem3D with_source = problem;
+    with_source.f.assign(grid.size(), 1.0);
+    with_source.f_over_sigma_jump.assign(sphere.vertex_count(), 0.0);
+    EXPECT_THROW(solver.Solve(sphere, with_source, g, phi), std::invalid_argument);
   }
   problem.sigma_minus = 1;
   problem.sigma_plus = 2;

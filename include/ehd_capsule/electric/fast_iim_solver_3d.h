@@ -22,9 +22,29 @@
 // Departures from the text and from the 2D solver: J includes the cubic term (as in 2D; the
 // deferred correction of the 2D solver is not carried over), and [f/sigma], [d_xi(f/sigma)] on
 // the surface are given by the caller (InterfaceProblem3D: the leaky dielectric has f = 0, so
-// only manufactured tests need them). The near-null modes the 2D solver
-// treats for sigma^- > sigma^+ (control basis, flux deflation, Richardson verification) are not
-// built yet: such a problem above max_inner_ratio is refused (SolverError), not solved badly.
+// only manufactured tests need them).
+//
+// A much more conducting inside (sigma^-/sigma^+ > harmonic_basis_min_ratio; not in the text).
+// The map G -> phi_n^- has near-null modes there, and the Schur operator's eigenvalues on them are
+// about sigma^+/[sigma] (-1/999 at 1000:1), smaller than the discretisation error of phi_n^-, so
+// GMRES on the vertex values stalls and its answer would be O(1) wrong (measured: 100 % on the
+// ellipsoid at 1000:1, N = 32, with a direct solve). Two families, as in 2D
+// (fast_iim_solver.h): (1) the equilibrium density (the potential of G constant inside), and (2)
+// vertex-scale modes of G, which the grid's corrections and fits average out. The 3D treatment:
+// (2) G = sum_lm c_lm Y_lm on the mesh's icosphere parametrisation (the unit-sphere position of
+// each vertex in IcosphereMesh: geometry/spherical_harmonics.h), degree L with shortest
+// wavelength 2 pi R / L >= harmonic_wavelength_h * h, solved in the Galerkin sense (the residual
+// tested against each Y_lm with the vertex areas) where the 2D solver uses control markers; (1)
+// the flux balance: the surface integral of phi_n^- is that of f^-/sigma^- over the inside
+// (divergence theorem), so the area mean of every solution is mu = (mean(v)/[sigma] -
+// flux/area) / (sigma^+/[sigma]), known before solving, and the solver works on
+// R(G) - (mean(G) - mu) = 0 (the eigenvalue moves from sigma^+/[sigma] to sigma^+/[sigma] - 1).
+// mu divides the data's mean by sigma^+/[sigma], so its quadrature error is multiplied by
+// sigma^-/sigma^+ (zero for the leaky dielectric, v = 0 and f = 0): the means use vertex weights
+// Richardson-extrapolated over the mesh's last two subdivision levels, and the flux, which needs
+// the inside volume, is the caller's (InterfaceProblem3D::interior_source_integral). The
+// extrapolation's own error (from the levels below) is reported (flux_balance_error()) and
+// refused above max_flux_balance_error. A mesh not of icosphere connectivity is refused there.
 //
 // Guarantees (SolverError naming the vertex or the quantity and the remedy): every vertex with
 // max(|kappa1|, |kappa2|) h <= max_curvature_h, every mesh edge <= max_edge_h * h (the jump data
@@ -36,6 +56,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -58,6 +79,10 @@ struct InterfaceProblem3D {
   // [phi] and [sigma phi_n] at the vertices; empty means zero.
   std::vector<double> w, v;
   PoissonBoundaryData3D boundary;
+  // The integral of f^-/sigma^- over the inside, for a much more conducting inside with f given
+  // (FastIim3DOptions::harmonic_basis_min_ratio; the flux balance needs it to better than the
+  // inverse of the ratio, which a grid sum cannot give). NaN: not given.
+  double interior_source_integral = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct FastIim3DOptions {
@@ -66,8 +91,15 @@ struct FastIim3DOptions {
   int fit_degree = 3;         // 3 (cubic) or 2 (quadratic)
   double max_curvature_h = 1.0;
   double max_edge_h = 2.0;
-  // sigma^-/sigma^+ above which the solve is refused (see the file comment).
-  double max_inner_ratio = 10.0;
+  // sigma^-/sigma^+ above which the solve is refused.
+  double max_inner_ratio = 1000.0;
+  // sigma^-/sigma^+ above which G is sought in the spherical-harmonic basis with the flux balance
+  // deflated (the file comment); at or below it, G at every vertex.
+  double harmonic_basis_min_ratio = 10.0;
+  double harmonic_wavelength_h = 4.0;  // the basis' shortest wavelength, in h
+  int max_harmonic_degree = 48;        // and its largest degree
+  // Refused above: the flux balance's quadrature error estimate relative to max |G|.
+  double max_flux_balance_error = 0.05;
   // After the solve, phi_n^- from the quadratic fit must agree with the cubic's to this fraction
   // of max |phi_n^+-| at every vertex (a resolution check of the potential near the surface).
   double max_fit_disagreement = 0.1;
@@ -117,9 +149,18 @@ class FastIimSolver3D {
   // The largest cubic/quadratic disagreement of phi_n^- of the last solve, relative to max
   // |phi_n^+-| (FastIim3DOptions::max_fit_disagreement).
   double fit_disagreement() const { return fit_disagreement_; }
+  // Of the last solve: the degree L of the harmonic basis (0: G at the vertices), and the flux
+  // balance's quadrature error estimate relative to max |G| (0 without the basis).
+  int harmonic_degree() const { return harmonic_degree_; }
+  double flux_balance_error() const { return flux_balance_error_; }
 
  private:
   void CheckResolution(const TriangleMesh& surface) const;
+  // The harmonic basis at the vertices for degree L on a mesh of icosphere level `level` (cached).
+  void SetUpHarmonicBasis(int level, int degree);
+  // GMRES in the harmonic basis with the flux balance deflated (g: guess in, solution out).
+  GmresResult SolveInHarmonicBasis(const TriangleMesh& surface, const InterfaceProblem3D& problem,
+                                   int level, std::vector<double>& g);
   void SetUpBand(const TriangleMesh& surface);
   void SetUpFits(const TriangleMesh& surface);
   // Throws SolverError above max_fit_disagreement.
@@ -165,6 +206,13 @@ class FastIimSolver3D {
   double sigma_minus_ = 1, sigma_plus_ = 1;
   int poisson_solves_ = 0;
   RestartedGmres gmres_;
+  // Harmonic basis (cached by level and degree): Y at the vertices, the unit icosphere's vertex
+  // areas (for projecting a warm start).
+  int basis_level_ = -1, basis_degree_ = -1;
+  Eigen::MatrixXd basis_;
+  Eigen::VectorXd basis_sphere_area_;
+  int harmonic_degree_ = 0;
+  double flux_balance_error_ = 0;
 };
 
 // Maxwell traction jump [M_E] . n per unit area at the vertices (song2019 sec. 3.5 in 3D),

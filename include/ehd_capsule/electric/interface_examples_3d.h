@@ -36,6 +36,7 @@ struct InterfaceExample3D {
   std::function<double(const Eigen::Vector3d&)> phi_minus, phi_plus;
   std::function<Eigen::Vector3d(const Eigen::Vector3d&)> grad_minus, grad_plus;
   double laplacian_minus = 0, laplacian_plus = 0;  // constant Laplacians of phi^-, phi^+
+  double inside_volume = 0;  // exact volume of the inside (the flux balance's source integral)
   // The exact unit outward normal at a point of the surface.
   std::function<Eigen::Vector3d(const Eigen::Vector3d&)> normal;
   std::function<TriangleMesh(int level)> mesh;
@@ -49,7 +50,8 @@ InterfaceExample3D MakeInterfaceExample3D(const std::string& name, double sigma_
                                           double sigma_plus = 1);
 
 // The problem for a grid and a mesh: f at the nodes by the mesh's classification, [f/sigma] at the
-// vertices, w, v from the exact solution, face data from phi^+.
+// vertices, the exact integral of f^-/sigma^- over the inside, w, v from the exact solution, face
+// data from phi^+.
 InterfaceProblem3D SampleInterfaceProblem3D(const InterfaceExample3D& e, const Grid3D& grid,
                                             const TriangleMesh& mesh,
                                             const SurfaceClassification3D& sides);
