@@ -78,9 +78,17 @@ int RunEforce3D(double sigma_r, double eps_r) {
   std::printf("%5s %14s %8s %7s %14s %16s %5s %9s\n", "N", "|F-F96|/|F|inf", "rate", "order",
               "|sum F|/sum|F|", "|t-t_free|/|t|", "iter", "ms");
   double previous = 0;
-  int previous_n = 0;
+  int previous_n = 0, refused = 0;
   for (int n : {24, 32, 48, 64}) {
-    const Force3D f = Force3DFor(n, mesh, sigma_r, eps_r);
+    Force3D f;
+    try {
+      f = Force3DFor(n, mesh, sigma_r, eps_r);
+    } catch (const SolverError& e) {  // a grid the solver cannot trust: a row, then go on
+      std::printf("%5d   refused: %s\n", n, e.what());
+      ++refused;
+      previous = 0;
+      continue;
+    }
     double err = 0, sum_abs = 0, free_err = 0;
     Eigen::Vector3d total = Eigen::Vector3d::Zero();
     for (int v = 0; v < mesh.vertex_count(); ++v) {
@@ -103,7 +111,7 @@ int RunEforce3D(double sigma_r, double eps_r) {
     previous = err;
     previous_n = n;
   }
-  return 0;
+  return refused > 0 ? 1 : 0;
 }
 
 int RunEforce(const std::vector<std::string>& args) {
