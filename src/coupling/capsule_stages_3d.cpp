@@ -428,7 +428,8 @@ MarkerStage3D::MarkerStage3D(const Scene& scene, const Grid3D& grid, const Immer
       fluid_(fluid),
       advector_(IntegratorOf(scene)) {
   if (scene.numerics.marker_filter_every > 0) {
-    filter_ = std::make_unique<MeshScaleFilter>(body.mesh);  // the rest mesh
+    filter_ = std::make_unique<MeshScaleFilter>(body.mesh,  // the rest mesh
+                                                scene.numerics.mesh_filter_order);
   }
 }
 

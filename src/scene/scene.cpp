@@ -450,6 +450,15 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
                   three_d ? "remove the mesh-scale part of the membrane's deformation every n "
                             "steps (ib/mesh_scale_filter.h); 0 = off"
                           : "smooth the markers' sawtooth mode every n steps; 0 = off"));
+    s.numerics.mesh_filter_order = static_cast<int>(
+        n.Integer("mesh_filter_order", 1, 32, 8,
+                  "3D: order p of the mesh-scale filter's high-pass (A/mu_max)^p; lower removes "
+                  "longer modes (ib/mesh_scale_filter.h)"));
+    if (!three_d && s.numerics.mesh_filter_order != 8) {
+      throw SceneError("scene " + origin +
+                       ": numerics.mesh_filter_order is 3D only (2D filters the markers' "
+                       "sawtooth mode, ib/sawtooth_filter.h)");
+    }
     const bool drop_3d = three_d && s.membrane == MembraneKind::kDrop;
     s.numerics.relax_mesh_every =
         static_cast<int>(n.Integer("relax_mesh_every", 0, 1000000000, drop_3d ? 100 : 0,

@@ -351,6 +351,29 @@ flow: shear
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("dimension: 3"), std::string::npos) << e.what();
   }
+  try {
+    ParseScene(R"(
+Ca: 0.1
+Re: 0.1
+E_b: 0
+eta: 0
+V: 1
+N: 32
+M: 32
+geometry: {shape: circle, half_width: 4}
+membrane: capsule
+flow: shear
+numerics: {mesh_filter_order: 4}
+)");
+    ADD_FAILURE() << "2D scene accepted numerics.mesh_filter_order";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh_filter_order is 3D only"), std::string::npos)
+        << e.what();
+  }
+  {  // the 3D filter's order reaches the stage
+    Simulation filtered(ParseScene(kTinySphere, {"numerics.mesh_filter_order=4"}));
+    EXPECT_NE(filtered.Pipeline().find("(order 4)"), std::string::npos) << filtered.Pipeline();
+  }
   const Scene skalak = ParseScene(kTinySphere, {"law=skalak", "C=15", "geometry.shape=biconcave"});
   EXPECT_EQ(skalak.law, SurfaceLawKind::kSkalak);
   EXPECT_EQ(skalak.M, 642);

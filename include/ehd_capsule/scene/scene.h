@@ -86,6 +86,8 @@ struct SceneNumerics {
   // (ib/sawtooth_filter.h) that removes the odd-even marker mode the immersed boundary cannot
   // damp; 0 = off. Bias on the shapes: docs/coupling.md ("Long runs").
   int marker_filter_every = 100;
+  // 3D: the order p of the mesh-scale filter (ib/mesh_scale_filter.h).
+  int mesh_filter_order = 8;
   double max_mach = 0.1;  // watchdog: max |u| / c_s
   int threads = 0;        // LBM OpenMP threads (0: OpenMP default)
 };
