@@ -94,11 +94,14 @@ LatticeBoltzmann<L>::LatticeBoltzmann(const LbmParameters& p) : params_(p) {
           "LbmParameters.s_pi / s_m set for a D2Q9 lattice, which has no pi or m moments "
           "(D3Q19 only)");
     }
-    if (p.pattern == StreamingPattern::kInPlace) {
+    // In place is opt-in for D2Q9 (kAuto: two lattices; docs/lbm.md has the measurements).
+    // Streaming stores belong to the two-lattice kernel.
+    if (p.pattern == StreamingPattern::kInPlace && p.stores == PopulationStores::kStreaming) {
       throw std::invalid_argument(
-          "LbmParameters.pattern = kInPlace is built for D3Q19 only so far (D2Q9 streams with two "
-          "arrays)");
+          "LbmParameters.stores = kStreaming needs pattern = kTwoLattice or kAuto for D2Q9 (the "
+          "in-place kernel writes through the cache)");
     }
+    in_place_ = p.pattern == StreamingPattern::kInPlace;
   } else {
     CheckRate("s_pi", p.s_pi);
     CheckRate("s_m", p.s_m);
@@ -402,14 +405,18 @@ void LatticeBoltzmann<L>::StreamCollide() {
   if constexpr (L::kDimension == 2) {
     // Streaming stores are opt-in: on the 2-core development machine (shared, loaded) they did
     // not measurably beat cached stores even at 1281^2 (docs/lbm.md), so kAuto keeps cached.
-    if (params_.stores == PopulationStores::kStreaming) {
+    if (params_.stores == PopulationStores::kStreaming && !in_place_) {
       const std::size_t per_thread = lbm_kernels::kD2Q9ScratchDoublesPerThread;
       const std::size_t needed = per_thread * static_cast<std::size_t>(threads) + 8;
       if (stream_scratch_.size() < needed) stream_scratch_.assign(needed, 0.0);  // first step
       const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(stream_scratch_.data());
       a.scratch = stream_scratch_.data() + ((64 - base % 64) % 64) / sizeof(double);
     }
-    lbm_kernels::StreamCollideD2Q9(a);
+    if (in_place_) {
+      lbm_kernels::StreamCollideD2Q9InPlace(a, next_odd_);
+    } else {
+      lbm_kernels::StreamCollideD2Q9(a);
+    }
   } else if (in_place_) {
     lbm_kernels::StreamCollideD3Q19InPlace(a, next_odd_);
   } else {

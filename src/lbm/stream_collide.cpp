@@ -104,6 +104,13 @@ void InteriorRow(int i_begin, int i_end, const double* __restrict s0, const doub
   }
 }
 
+// The half-way bounce-back population of a y wall moving at u_w along x: f*_opp(q) + 6 w_q c_qx
+// u_w. Both kernels call it, so they round it the same way.
+inline double MovingWallLink(double reflected, int q, double wall_u) {
+  using namespace d2q9;
+  return reflected + 6.0 * kWeight[q] * kCx[q] * wall_u;
+}
+
 // General node: gathers with wrap-around and bounce-back, then collides.
 template <ForcingScheme kForcing, bool kVariableViscosity>
 void BoundaryNode(const KernelArgs& a, int i, int j) {
@@ -118,7 +125,7 @@ void BoundaryNode(const KernelArgs& a, int i, int j) {
         sj = (sj + a.ny) % a.ny;
       } else {
         const double wall_u = sj < 0 ? a.wall_u_bottom : a.wall_u_top;
-        f[q] = a.src[kOpposite[q] * a.n + node] + 6.0 * kWeight[q] * kCx[q] * wall_u;
+        f[q] = MovingWallLink(a.src[kOpposite[q] * a.n + node], q, wall_u);
         continue;
       }
     }
@@ -191,14 +198,142 @@ void StreamCollideRows(const KernelArgs& a, int threads) {
   }
 }
 
-}  // namespace
+// ---------------------------------------------------------------------------------------------
+// In-place streaming on one population array (the AA pattern, as StreamCollideD3Q19InPlace):
+//   even: node x reads f_i(x) from its own slot i, collides and writes f*_i(x) into its own slot
+//         opp(i);
+//   odd:  node x reads f_i(x) = f*_i(x - c_i) from slot opp(i) of x - c_i, collides and writes
+//         f*_i(x) into slot i of x + c_i.
+// Each location is read and written by one node only, so the update is race-free in place and the
+// rows are independent. A link whose source lies beyond a wall reads slot i of its own node
+// (f*_opp(i)(x) in either step) plus the moving wall's term, added when read; a link leaving
+// through a wall in an odd step writes f*_i(x) into slot opp(i) of x. Same collision and wall
+// arithmetic as the two-lattice kernel, so both give identical results (a test).
 
-namespace lbm_kernels {
+// Interior stretch [i_begin, i_end) of one row: 9 incoming streams g_q and 9 outgoing d_q. The
+// outgoing streams are incoming streams of other directions at the same index (d_opp(q) = g_q in
+// an even step, d_q = g_opp(q) shifted in an odd one): no restrict on them. Each iteration reads
+// all its populations before it writes any and no iteration touches another's locations, which
+// is what `omp simd` asserts, so the loop still vectorises.
+template <ForcingScheme kForcing, bool kVariableViscosity>
+void InPlaceInteriorRow(int i_begin, int i_end, const double* const* g, double* const* d,
+                        const double* __restrict fx, const double* __restrict fy,
+                        const double* __restrict s_nu_field, double s_nu_uniform, MrtRates rates,
+                        double* __restrict rho, double* __restrict ux, double* __restrict uy) {
+  const double *g0 = g[0], *g1 = g[1], *g2 = g[2], *g3 = g[3], *g4 = g[4];
+  const double *g5 = g[5], *g6 = g[6], *g7 = g[7], *g8 = g[8];
+  double *d0 = d[0], *d1 = d[1], *d2 = d[2], *d3 = d[3], *d4 = d[4];
+  double *d5 = d[5], *d6 = d[6], *d7 = d[7], *d8 = d[8];
+#pragma omp simd
+  for (int i = i_begin; i < i_end; ++i) {
+    double f0 = g0[i], f1 = g1[i], f2 = g2[i], f3 = g3[i], f4 = g4[i];
+    double f5 = g5[i], f6 = g6[i], f7 = g7[i], f8 = g8[i];
+    const double s_nu = kVariableViscosity ? s_nu_field[i] : s_nu_uniform;
+    double r, u, v;
+    MrtCollideNode<kForcing>(f0, f1, f2, f3, f4, f5, f6, f7, f8, fx[i], fy[i], s_nu, rates, r, u,
+                             v);
+    d0[i] = f0;
+    d1[i] = f1;
+    d2[i] = f2;
+    d3[i] = f3;
+    d4[i] = f4;
+    d5[i] = f5;
+    d6[i] = f6;
+    d7[i] = f7;
+    d8[i] = f8;
+    rho[i] = r;
+    ux[i] = u;
+    uy[i] = v;
+  }
+}
 
-const std::size_t kD2Q9ScratchDoublesPerThread =
-    static_cast<std::size_t>(kScratchStreams) * kStreamChunk;
+// Where the link q of node (i, j) comes from (sign = -1) or goes to (+1): 0 and the node index,
+// or the wall it crosses (-1 bottom, -2 top, -3 side). The y walls take the corner diagonals.
+inline int Neighbour(const KernelArgs& a, int i, int j, int q, int sign, std::size_t* node) {
+  using namespace d2q9;
+  int si = i + sign * kCx[q], sj = j + sign * kCy[q];
+  if (sj < 0 || sj >= a.ny) {
+    if (!a.periodic_y) return sj < 0 ? -1 : -2;
+    sj = (sj + a.ny) % a.ny;
+  }
+  if (si < 0 || si >= a.nx) {
+    if (a.side_walls) return -3;
+    si = (si + a.nx) % a.nx;
+  }
+  *node = static_cast<std::size_t>(sj) * a.nx + si;
+  return 0;
+}
 
-void StreamCollideD2Q9(const StreamCollideArgs& g) {
+// General node in place: gather with wrap and bounce-back, collide, scatter.
+template <ForcingScheme kForcing, bool kVariableViscosity, bool kOdd>
+void InPlaceNode(const KernelArgs& a, int i, int j) {
+  using namespace d2q9;
+  double* const f = a.dst;
+  const std::size_t n = a.n;
+  const std::size_t node = static_cast<std::size_t>(j) * a.nx + i;
+  double p[kQ];
+  for (int q = 0; q < kQ; ++q) {
+    std::size_t from = 0;
+    const int wall = Neighbour(a, i, j, q, -1, &from);
+    if (wall == -3) {
+      p[q] = f[q * n + node];  // resting side wall
+    } else if (wall != 0) {
+      p[q] = MovingWallLink(f[q * n + node], q, wall == -1 ? a.wall_u_bottom : a.wall_u_top);
+    } else {
+      p[q] = kOdd ? f[kOpposite[q] * n + from] : f[q * n + node];
+    }
+  }
+  const double s_nu = kVariableViscosity ? a.s_nu_field[node] : a.s_nu_uniform;
+  MrtCollideNode<kForcing>(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], a.fx[node],
+                           a.fy[node], s_nu, a.rates, a.rho[node], a.ux[node], a.uy[node]);
+  for (int q = 0; q < kQ; ++q) {
+    std::size_t to = 0;
+    if (kOdd && Neighbour(a, i, j, q, +1, &to) == 0) {
+      f[q * n + to] = p[q];
+    } else {
+      f[kOpposite[q] * n + node] = p[q];  // even step, or bounced back into its own node
+    }
+  }
+}
+
+template <ForcingScheme kForcing, bool kVariableViscosity, bool kOdd>
+void InPlaceRows(const KernelArgs& a, int threads) {
+  using namespace d2q9;
+  const int nx = a.nx, ny = a.ny;
+  const std::size_t n = a.n;
+  double* const f = a.dst;  // the single array (src == dst)
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads != 1)
+  for (int j = 0; j < ny; ++j) {
+    const bool wall_row = !a.periodic_y && (j == 0 || j == ny - 1);
+    if (wall_row || nx < 3) {
+      for (int i = 0; i < nx; ++i) InPlaceNode<kForcing, kVariableViscosity, kOdd>(a, i, j);
+      continue;
+    }
+    InPlaceNode<kForcing, kVariableViscosity, kOdd>(a, 0, j);
+    const std::size_t row = static_cast<std::size_t>(j) * nx;
+    // Interior i = 1..nx-2: all nine links stay inside (y wraps by row when periodic).
+    const double* gather[kQ];
+    double* scatter[kQ];
+    for (int q = 0; q < kQ; ++q) {
+      if (kOdd) {
+        const std::size_t from = static_cast<std::size_t>((j - kCy[q] + ny) % ny) * nx;
+        const std::size_t to = static_cast<std::size_t>((j + kCy[q] + ny) % ny) * nx;
+        gather[q] = f + kOpposite[q] * n + from - kCx[q];
+        scatter[q] = f + q * n + to + kCx[q];
+      } else {
+        gather[q] = f + q * n + row;
+        scatter[q] = f + kOpposite[q] * n + row;
+      }
+    }
+    InPlaceInteriorRow<kForcing, kVariableViscosity>(
+        1, nx - 1, gather, scatter, a.fx + row, a.fy + row,
+        kVariableViscosity ? a.s_nu_field + row : nullptr, a.s_nu_uniform, a.rates, a.rho + row,
+        a.ux + row, a.uy + row);
+    InPlaceNode<kForcing, kVariableViscosity, kOdd>(a, nx - 1, j);
+  }
+}
+
+KernelArgs MakeKernelArgs(const lbm_kernels::StreamCollideArgs& g) {
   KernelArgs a;
   a.src = g.src;
   a.dst = g.dst;
@@ -218,6 +353,18 @@ void StreamCollideD2Q9(const StreamCollideArgs& g) {
   a.ux = g.u[0];
   a.uy = g.u[1];
   a.scratch = g.scratch;
+  return a;
+}
+
+}  // namespace
+
+namespace lbm_kernels {
+
+const std::size_t kD2Q9ScratchDoublesPerThread =
+    static_cast<std::size_t>(kScratchStreams) * kStreamChunk;
+
+void StreamCollideD2Q9(const StreamCollideArgs& g) {
+  const KernelArgs a = MakeKernelArgs(g);
   const bool guo = g.forcing == ForcingScheme::kGuo;
   const bool variable = g.s_nu_field != nullptr;
   if (guo && variable) {
@@ -228,6 +375,32 @@ void StreamCollideD2Q9(const StreamCollideArgs& g) {
     StreamCollideRows<ForcingScheme::kSplitMomentum, true>(a, g.threads);
   } else {
     StreamCollideRows<ForcingScheme::kSplitMomentum, false>(a, g.threads);
+  }
+}
+
+void StreamCollideD2Q9InPlace(const StreamCollideArgs& g, bool odd) {
+  KernelArgs a = MakeKernelArgs(g);
+  a.src = a.dst;
+  const bool guo = g.forcing == ForcingScheme::kGuo;
+  const bool variable = g.s_nu_field != nullptr;
+  if (odd) {
+    if (guo && variable) {
+      InPlaceRows<ForcingScheme::kGuo, true, true>(a, g.threads);
+    } else if (guo) {
+      InPlaceRows<ForcingScheme::kGuo, false, true>(a, g.threads);
+    } else if (variable) {
+      InPlaceRows<ForcingScheme::kSplitMomentum, true, true>(a, g.threads);
+    } else {
+      InPlaceRows<ForcingScheme::kSplitMomentum, false, true>(a, g.threads);
+    }
+  } else if (guo && variable) {
+    InPlaceRows<ForcingScheme::kGuo, true, false>(a, g.threads);
+  } else if (guo) {
+    InPlaceRows<ForcingScheme::kGuo, false, false>(a, g.threads);
+  } else if (variable) {
+    InPlaceRows<ForcingScheme::kSplitMomentum, true, false>(a, g.threads);
+  } else {
+    InPlaceRows<ForcingScheme::kSplitMomentum, false, false>(a, g.threads);
   }
 }
 

@@ -28,9 +28,12 @@ struct StreamCollideArgs {
   int threads = 1;
 };
 
-// D2Q9 (stream_collide.cpp). Streaming-store scratch: this many doubles per thread.
+// D2Q9 (stream_collide.cpp): two lattices (src -> dst), or in place on one array (dst; the AA
+// pattern, `odd` alternates as for D3Q19). Streaming-store scratch (two lattices only): this many
+// doubles per thread.
 extern const std::size_t kD2Q9ScratchDoublesPerThread;
 void StreamCollideD2Q9(const StreamCollideArgs& a);
+void StreamCollideD2Q9InPlace(const StreamCollideArgs& a, bool odd);
 // One node's collision with the fast kernel (f: 9 populations in place, force: 2 components).
 void CollideNodeD2Q9(double* f, const double* force, double s_nu, const MrtRates& rates,
                      ForcingScheme forcing, double& rho, double* u);

@@ -39,8 +39,9 @@ enum class FluidBoundary { kPeriodic, kShearWalls, kClosedBox };
 enum class PopulationStores { kAuto, kCached, kStreaming };
 
 // How the populations stream: two arrays (read one, write the other), or in place on one array
-// (the AA pattern: half the memory and traffic; D3Q19 only so far). kAuto: in place for D3Q19,
-// two arrays for D2Q9. Results are identical either way.
+// (the AA pattern: half the population memory, no write-allocate traffic). kAuto: in place for
+// D3Q19, two arrays for D2Q9 (in place is opt-in there, see docs/lbm.md). Results are identical
+// either way. D2Q9 streaming stores (PopulationStores::kStreaming) need the two-lattice pattern.
 enum class StreamingPattern { kAuto, kTwoLattice, kInPlace };
 
 struct LbmParameters {
