@@ -4,7 +4,9 @@
 // Memory traffic per node update (double), A/B streaming with write-allocate:
 //   D2Q9:  9 population reads + 9 writes (144 B) + write-allocate of the 9 written lines (72 B) =
 //          216 B for a bare kernel; this one also reads the force (2 x 8 B) and writes rho, ux, uy
-//          (3 x 8 B + 3 x 8 B write-allocate): 280 B per update (+8 B with a viscosity field).
+//          (3 x 8 B + 3 x 8 B write-allocate): 280 B per update (+8 B with a viscosity field);
+//          in place (the AA pattern, the default; --pattern two for A/B) the population writes go
+//          to lines just read, so no write-allocate for them: 144 + 16 + 48 = 208 B.
 //   D3Q19: 19 reads + 19 writes + 19 write-allocate (456 B), force 3 x 8 B, rho and u 4 x 8 B
 //          + write-allocate 4 x 8 B: 544 B per update (+8 B with a viscosity field); in place
 //          (the AA pattern, --pattern inplace, the default) the writes go to lines just read, so
@@ -179,14 +181,18 @@ int main(int argc, char** argv) {
                  "lbm_bench: %s\nusage: lbm_bench [--lattice d2q9|d3q19] [--sizes 256,321,...] "
                  "[--threads 1,2] "
                  "[--seconds 0.5] [--repeats 3] [--forcing split|guo] [--viscosity-field] "
-                 "[--stores auto|cached|streaming]\n",
+                 "[--stores auto|cached|streaming] [--pattern auto|two|inplace]\n",
                  e.what());
     return 2;
   }
   if (d3q19 && !sizes_given) sizes = {64, 100, 128};
-  const bool in_place = d3q19 && o.pattern != ehd::StreamingPattern::kTwoLattice;
+  // As LbmParameters::pattern resolves kAuto: in place, except D2Q9 with streaming stores.
+  const bool in_place = o.pattern == ehd::StreamingPattern::kInPlace ||
+                        (o.pattern == ehd::StreamingPattern::kAuto &&
+                         (d3q19 || o.stores != ehd::PopulationStores::kStreaming));
   const double bytes_per_update =
-      (d3q19 ? (in_place ? 392.0 : 544.0) : 280.0) + (o.viscosity_field ? 8.0 : 0.0);
+      (d3q19 ? (in_place ? 392.0 : 544.0) : (in_place ? 208.0 : 280.0)) +
+      (o.viscosity_field ? 8.0 : 0.0);
   std::printf("%s MRT stream-collide%s, shear walls, forcing %s%s, best of %d runs of >= %.2f s\n",
               d3q19 ? "D3Q19" : "D2Q9", in_place ? " (in place)" : "",
               o.forcing == ehd::ForcingScheme::kGuo ? "guo" : "split",

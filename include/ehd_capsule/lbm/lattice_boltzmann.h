@@ -40,8 +40,9 @@ enum class PopulationStores { kAuto, kCached, kStreaming };
 
 // How the populations stream: two arrays (read one, write the other), or in place on one array
 // (the AA pattern: half the population memory, no write-allocate traffic). kAuto: in place for
-// D3Q19, two arrays for D2Q9 (in place is opt-in there, see docs/lbm.md). Results are identical
-// either way. D2Q9 streaming stores (PopulationStores::kStreaming) need the two-lattice pattern.
+// both lattices (measured faster, docs/lbm.md), except D2Q9 with PopulationStores::kStreaming,
+// which streams with two arrays (kInPlace with kStreaming is refused). Results are identical
+// either way.
 enum class StreamingPattern { kAuto, kTwoLattice, kInPlace };
 
 struct LbmParameters {
