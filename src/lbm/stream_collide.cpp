@@ -11,6 +11,9 @@
 // rows/columns that touch a wall or wrap in x take the general path; the rest of each row goes
 // through a loop whose nine source streams are row pointers shifted by -c_x, which the compiler
 // vectorises (`#pragma omp simd`, restrict pointers; check with -fopt-info-vec).
+//
+// StreamCollideD2Q9InPlace is the same update on one array (the AA pattern, see its section
+// below), with the same collision and wall arithmetic, so the results are identical.
 #include "stream_collide.h"
 
 #include <immintrin.h>
