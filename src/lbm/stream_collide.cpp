@@ -71,23 +71,25 @@ inline void StoreFence() {
 #endif
 }
 
-// Interior stretch [i_begin, i_end) of one row: all nine sources are inside the domain at the
-// shifted row pointers s_q (s_q[i] = f*_q(i - c_qx, j - c_qy)).
+// Interior stretch [i_begin, i_end) of one row: 9 incoming streams g_q and 9 outgoing d_q (both
+// kernels). The
+// outgoing streams are incoming streams of other directions at the same index (d_opp(q) = g_q in
+// an even step, d_q = g_opp(q) shifted in an odd one): no restrict on them. Each iteration reads
+// all its populations before it writes any and no iteration touches another's locations, which
+// is what `omp simd` asserts, so the loop still vectorises.
 template <ForcingScheme kForcing, bool kVariableViscosity>
-void InteriorRow(int i_begin, int i_end, const double* __restrict s0, const double* __restrict s1,
-                 const double* __restrict s2, const double* __restrict s3,
-                 const double* __restrict s4, const double* __restrict s5,
-                 const double* __restrict s6, const double* __restrict s7,
-                 const double* __restrict s8, double* __restrict d0, double* __restrict d1,
-                 double* __restrict d2, double* __restrict d3, double* __restrict d4,
-                 double* __restrict d5, double* __restrict d6, double* __restrict d7,
-                 double* __restrict d8, const double* __restrict fx, const double* __restrict fy,
-                 const double* __restrict s_nu_field, double s_nu_uniform, MrtRates rates,
-                 double* __restrict rho, double* __restrict ux, double* __restrict uy) {
+void CollideRow(int i_begin, int i_end, const double* const* g, double* const* d,
+                const double* __restrict fx, const double* __restrict fy,
+                const double* __restrict s_nu_field, double s_nu_uniform, MrtRates rates,
+                double* __restrict rho, double* __restrict ux, double* __restrict uy) {
+  const double *g0 = g[0], *g1 = g[1], *g2 = g[2], *g3 = g[3], *g4 = g[4];
+  const double *g5 = g[5], *g6 = g[6], *g7 = g[7], *g8 = g[8];
+  double *d0 = d[0], *d1 = d[1], *d2 = d[2], *d3 = d[3], *d4 = d[4];
+  double *d5 = d[5], *d6 = d[6], *d7 = d[7], *d8 = d[8];
 #pragma omp simd
   for (int i = i_begin; i < i_end; ++i) {
-    double f0 = s0[i], f1 = s1[i], f2 = s2[i], f3 = s3[i], f4 = s4[i];
-    double f5 = s5[i], f6 = s6[i], f7 = s7[i], f8 = s8[i];
+    double f0 = g0[i], f1 = g1[i], f2 = g2[i], f3 = g3[i], f4 = g4[i];
+    double f5 = g5[i], f6 = g6[i], f7 = g7[i], f8 = g8[i];
     const double s_nu = kVariableViscosity ? s_nu_field[i] : s_nu_uniform;
     double r, u, v;
     MrtCollideNode<kForcing>(f0, f1, f2, f3, f4, f5, f6, f7, f8, fx[i], fy[i], s_nu, rates, r, u,
@@ -105,6 +107,25 @@ void InteriorRow(int i_begin, int i_end, const double* __restrict s0, const doub
     ux[i] = u;
     uy[i] = v;
   }
+}
+
+// Interior stretch [i_begin, i_end) of one row: all nine sources are inside the domain at the
+// shifted row pointers s_q (s_q[i] = f*_q(i - c_qx, j - c_qy)).
+template <ForcingScheme kForcing, bool kVariableViscosity>
+void InteriorRow(int i_begin, int i_end, const double* __restrict s0, const double* __restrict s1,
+                 const double* __restrict s2, const double* __restrict s3,
+                 const double* __restrict s4, const double* __restrict s5,
+                 const double* __restrict s6, const double* __restrict s7,
+                 const double* __restrict s8, double* __restrict d0, double* __restrict d1,
+                 double* __restrict d2, double* __restrict d3, double* __restrict d4,
+                 double* __restrict d5, double* __restrict d6, double* __restrict d7,
+                 double* __restrict d8, const double* __restrict fx, const double* __restrict fy,
+                 const double* __restrict s_nu_field, double s_nu_uniform, MrtRates rates,
+                 double* __restrict rho, double* __restrict ux, double* __restrict uy) {
+  const double* g[9] = {s0, s1, s2, s3, s4, s5, s6, s7, s8};
+  double* d[9] = {d0, d1, d2, d3, d4, d5, d6, d7, d8};
+  CollideRow<kForcing, kVariableViscosity>(i_begin, i_end, g, d, fx, fy, s_nu_field, s_nu_uniform,
+                                           rates, rho, ux, uy);
 }
 
 // The half-way bounce-back population of a y wall moving at u_w along x: f*_opp(q) + 6 w_q c_qx
@@ -213,43 +234,6 @@ void StreamCollideRows(const KernelArgs& a, int threads) {
 // through a wall in an odd step writes f*_i(x) into slot opp(i) of x. Same collision and wall
 // arithmetic as the two-lattice kernel, so both give identical results (a test).
 
-// Interior stretch [i_begin, i_end) of one row: 9 incoming streams g_q and 9 outgoing d_q. The
-// outgoing streams are incoming streams of other directions at the same index (d_opp(q) = g_q in
-// an even step, d_q = g_opp(q) shifted in an odd one): no restrict on them. Each iteration reads
-// all its populations before it writes any and no iteration touches another's locations, which
-// is what `omp simd` asserts, so the loop still vectorises.
-template <ForcingScheme kForcing, bool kVariableViscosity>
-void InPlaceInteriorRow(int i_begin, int i_end, const double* const* g, double* const* d,
-                        const double* __restrict fx, const double* __restrict fy,
-                        const double* __restrict s_nu_field, double s_nu_uniform, MrtRates rates,
-                        double* __restrict rho, double* __restrict ux, double* __restrict uy) {
-  const double *g0 = g[0], *g1 = g[1], *g2 = g[2], *g3 = g[3], *g4 = g[4];
-  const double *g5 = g[5], *g6 = g[6], *g7 = g[7], *g8 = g[8];
-  double *d0 = d[0], *d1 = d[1], *d2 = d[2], *d3 = d[3], *d4 = d[4];
-  double *d5 = d[5], *d6 = d[6], *d7 = d[7], *d8 = d[8];
-#pragma omp simd
-  for (int i = i_begin; i < i_end; ++i) {
-    double f0 = g0[i], f1 = g1[i], f2 = g2[i], f3 = g3[i], f4 = g4[i];
-    double f5 = g5[i], f6 = g6[i], f7 = g7[i], f8 = g8[i];
-    const double s_nu = kVariableViscosity ? s_nu_field[i] : s_nu_uniform;
-    double r, u, v;
-    MrtCollideNode<kForcing>(f0, f1, f2, f3, f4, f5, f6, f7, f8, fx[i], fy[i], s_nu, rates, r, u,
-                             v);
-    d0[i] = f0;
-    d1[i] = f1;
-    d2[i] = f2;
-    d3[i] = f3;
-    d4[i] = f4;
-    d5[i] = f5;
-    d6[i] = f6;
-    d7[i] = f7;
-    d8[i] = f8;
-    rho[i] = r;
-    ux[i] = u;
-    uy[i] = v;
-  }
-}
-
 // Where the link q of node (i, j) comes from (sign = -1) or goes to (+1): 0 and the node index,
 // or the wall it crosses (-1 bottom, -2 top, -3 side). The y walls take the corner diagonals.
 inline int Neighbour(const KernelArgs& a, int i, int j, int q, int sign, std::size_t* node) {
@@ -328,10 +312,10 @@ void InPlaceRows(const KernelArgs& a, int threads) {
         scatter[q] = f + kOpposite[q] * n + row;
       }
     }
-    InPlaceInteriorRow<kForcing, kVariableViscosity>(
-        1, nx - 1, gather, scatter, a.fx + row, a.fy + row,
-        kVariableViscosity ? a.s_nu_field + row : nullptr, a.s_nu_uniform, a.rates, a.rho + row,
-        a.ux + row, a.uy + row);
+    CollideRow<kForcing, kVariableViscosity>(1, nx - 1, gather, scatter, a.fx + row, a.fy + row,
+                                             kVariableViscosity ? a.s_nu_field + row : nullptr,
+                                             a.s_nu_uniform, a.rates, a.rho + row, a.ux + row,
+                                             a.uy + row);
     InPlaceNode<kForcing, kVariableViscosity, kOdd>(a, nx - 1, j);
   }
 }
