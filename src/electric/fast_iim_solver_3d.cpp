@@ -357,6 +357,19 @@ void FastIimSolver3D::PotentialAndNormalDerivative(const double* g, bool with_da
   }
 }
 
+int FastIimSolver3D::CachedIcosphereLevel(const TriangleMesh& surface) {
+  // The same mesh as last time (a capsule's connectivity never changes): no new icosphere.
+  const int last = static_cast<int>(icosphere_triangles_.size()) - 1;
+  if (last >= 0 && surface.vertex_count() == 10 * (1 << (2 * last)) + 2 &&
+      surface.triangles() == icosphere_triangles_[last]) {
+    return last;
+  }
+  const int level = IcosphereLevel(surface);
+  icosphere_triangles_.clear();
+  for (int j = 0; j <= level; ++j) icosphere_triangles_.push_back(IcosphereMesh(j).triangles());
+  return level;
+}
+
 void FastIimSolver3D::SetUpHarmonicBasis(int level, int degree) {
   if (level == basis_level_ && degree == basis_degree_) return;
   const TriangleMesh sphere = IcosphereMesh(level, 1.0);
@@ -374,14 +387,18 @@ namespace {
 // third-area rule on these nested meshes is an even series in the edge length, measured: each
 // step gains a factor 16, then 64, per level), on the first 10 * 4^level + 2 vertices of `mesh`.
 // steps <= level.
-Eigen::VectorXd ExtrapolatedVertexWeights(const TriangleMesh& mesh, int level, int steps) {
+// triangles[j]: IcosphereMesh(j)'s triangle list (the solver's cache).
+Eigen::VectorXd ExtrapolatedVertexWeights(
+    const Eigen::Matrix3Xd& x, const std::vector<std::vector<TriangleMesh::Triangle>>& triangles,
+    int level, int steps) {
   if (steps == 0) {
-    const std::vector<double> a = VertexThirdAreas(IcosphereSubmesh(mesh, level));
-    return Eigen::Map<const Eigen::VectorXd>(a.data(), static_cast<Eigen::Index>(a.size()));
+    const int count = 10 * (1 << (2 * level)) + 2;
+    const std::vector<double> a = VertexThirdAreas(x, triangles[level], count);
+    return Eigen::Map<const Eigen::VectorXd>(a.data(), count);
   }
   // R_s(level) = (4^s R_{s-1}(level) - R_{s-1}(level - 1)) / (4^s - 1).
-  Eigen::VectorXd q = ExtrapolatedVertexWeights(mesh, level, steps - 1);
-  const Eigen::VectorXd below = ExtrapolatedVertexWeights(mesh, level - 1, steps - 1);
+  Eigen::VectorXd q = ExtrapolatedVertexWeights(x, triangles, level, steps - 1);
+  const Eigen::VectorXd below = ExtrapolatedVertexWeights(x, triangles, level - 1, steps - 1);
   const double factor = std::pow(4.0, steps);
   q *= factor;
   q.head(below.size()) -= below;
@@ -417,15 +434,20 @@ GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
     const double flux = with_source ? problem.interior_source_integral : 0.0;
     return (integral_v / jump - flux) / area / scale;
   };
-  const Eigen::VectorXd q = ExtrapolatedVertexWeights(surface, level, 2);
+  const Eigen::Matrix3Xd& position = surface.vertices();
+  const Eigen::VectorXd q = ExtrapolatedVertexWeights(position, icosphere_triangles_, level, 2);
   double area = 0;
   const double mu = flux_mean(q, &area);
   const Eigen::VectorXd mean_weight = q / area;
   const double mu_error =
       level >= 3
-          ? std::abs(mu - flux_mean(ExtrapolatedVertexWeights(surface, level - 1, 2), nullptr)) /
+          ? std::abs(mu - flux_mean(ExtrapolatedVertexWeights(position, icosphere_triangles_,
+                                                              level - 1, 2),
+                                    nullptr)) /
                 63.0
-          : std::abs(mu - flux_mean(ExtrapolatedVertexWeights(surface, level, 1), nullptr));
+          : std::abs(mu -
+                     flux_mean(ExtrapolatedVertexWeights(position, icosphere_triangles_, level, 1),
+                               nullptr));
   // Degree: shortest wavelength 2 pi R / L >= harmonic_wavelength_h h, R of the same area, and
   // at least four vertices per basis function.
   const double radius = std::sqrt(area / (4.0 * 3.14159265358979323846));
@@ -520,7 +542,7 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
     throw SolverError(os.str());
   }
   const bool harmonic = inner_ratio > options_.harmonic_basis_min_ratio;
-  const int level = harmonic ? IcosphereLevel(surface) : -1;
+  const int level = harmonic ? CachedIcosphereLevel(surface) : -1;
   if (harmonic && level < 2) {
     std::ostringstream os;
     os << "3D immersed interface: sigma^-/sigma^+ = " << inner_ratio

@@ -172,9 +172,14 @@ double BiconcaveVolume(const BiconcaveParameters& p) {
 }
 
 std::vector<double> VertexThirdAreas(const TriangleMesh& mesh) {
-  std::vector<double> area(mesh.vertex_count(), 0.0);
-  const Eigen::Matrix3Xd& x = mesh.vertices();
-  for (const auto& t : mesh.triangles()) {
+  return VertexThirdAreas(mesh.vertices(), mesh.triangles(), mesh.vertex_count());
+}
+
+std::vector<double> VertexThirdAreas(const Eigen::Matrix3Xd& x,
+                                     const std::vector<TriangleMesh::Triangle>& triangles,
+                                     int vertex_count) {
+  std::vector<double> area(vertex_count, 0.0);
+  for (const auto& t : triangles) {
     const double third = (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0])).norm() / 6.0;
     for (int v : t) area[v] += third;
   }

@@ -156,6 +156,9 @@ class FastIimSolver3D {
 
  private:
   void CheckResolution(const TriangleMesh& surface) const;
+  // IcosphereLevel(surface), with IcosphereMesh(j)'s triangles for j <= level kept for the
+  // quadrature weights (rebuilt only when the connectivity changes).
+  int CachedIcosphereLevel(const TriangleMesh& surface);
   // The harmonic basis at the vertices for degree L on a mesh of icosphere level `level` (cached).
   void SetUpHarmonicBasis(int level, int degree);
   // GMRES in the harmonic basis with the flux balance deflated (g: guess in, solution out).
@@ -208,6 +211,7 @@ class FastIimSolver3D {
   RestartedGmres gmres_;
   // Harmonic basis (cached by level and degree): Y at the vertices, the unit icosphere's vertex
   // areas (for projecting a warm start).
+  std::vector<std::vector<TriangleMesh::Triangle>> icosphere_triangles_;
   int basis_level_ = -1, basis_degree_ = -1;
   Eigen::MatrixXd basis_;
   Eigen::VectorXd basis_sphere_area_;

@@ -82,6 +82,10 @@ double SurfaceArea(const TriangleMesh& mesh);
 // cheap vertex weight where the mixed Voronoi areas of MeasureSurface (a cotangent pass) are not
 // needed.
 std::vector<double> VertexThirdAreas(const TriangleMesh& mesh);
+// The same for the first `vertex_count` columns of x with a triangle list (no mesh built).
+std::vector<double> VertexThirdAreas(const Eigen::Matrix3Xd& x,
+                                     const std::vector<TriangleMesh::Triangle>& triangles,
+                                     int vertex_count);
 // The vertex-area-weighted (VertexThirdAreas) mean of a per-vertex field (one column each).
 Eigen::Vector3d AreaWeightedMean(const TriangleMesh& mesh, const std::vector<double>& area,
                                  const Eigen::Matrix3Xd& field);
