@@ -333,26 +333,7 @@ TEST(Simulation3D, SceneKeysAreValidatedForThreeDimensions) {
     EXPECT_NE(std::string(e.what()).find("mesh_subdivisions >= 3"), std::string::npos) << e.what();
   }
   // 2D scenes refuse the 3D keys.
-  try {
-    ParseScene(R"(
-Ca: 0.1
-Re: 0.1
-E_b: 0
-eta: 0
-V: 1
-N: 32
-M: 32
-law: skalak
-geometry: {shape: circle, half_width: 4}
-membrane: capsule
-flow: shear
-)");
-    ADD_FAILURE() << "2D scene accepted law";
-  } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("dimension: 3"), std::string::npos) << e.what();
-  }
-  try {
-    ParseScene(R"(
+  const std::string capsule_2d = R"(
 Ca: 0.1
 Re: 0.1
 E_b: 0
@@ -363,13 +344,17 @@ M: 32
 geometry: {shape: circle, half_width: 4}
 membrane: capsule
 flow: shear
-numerics: {mesh_filter_order: 4}
-)");
-    ADD_FAILURE() << "2D scene accepted numerics.mesh_filter_order";
-  } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("mesh_filter_order is 3D only"), std::string::npos)
-        << e.what();
-  }
+)";
+  const auto refused_2d = [&](const std::string& key, const std::string& expect) {
+    try {
+      ParseScene(capsule_2d, {key});
+      ADD_FAILURE() << "2D scene accepted " << key;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+    }
+  };
+  refused_2d("law=skalak", "dimension: 3");
+  refused_2d("numerics.mesh_filter_order=4", "mesh_filter_order is 3D only");
   {  // the 3D filter's order reaches the stage
     Simulation filtered(ParseScene(kTinySphere, {"numerics.mesh_filter_order=4"}));
     EXPECT_NE(filtered.Pipeline().find("(order 4)"), std::string::npos) << filtered.Pipeline();
