@@ -365,29 +365,28 @@ void StreamCollideD2Q9(const StreamCollideArgs& g) {
   }
 }
 
+template <bool kOdd>
+void InPlaceRowsFor(const KernelArgs& a, bool guo, bool variable, int threads) {
+  if (guo && variable) {
+    InPlaceRows<ForcingScheme::kGuo, true, kOdd>(a, threads);
+  } else if (guo) {
+    InPlaceRows<ForcingScheme::kGuo, false, kOdd>(a, threads);
+  } else if (variable) {
+    InPlaceRows<ForcingScheme::kSplitMomentum, true, kOdd>(a, threads);
+  } else {
+    InPlaceRows<ForcingScheme::kSplitMomentum, false, kOdd>(a, threads);
+  }
+}
+
 void StreamCollideD2Q9InPlace(const StreamCollideArgs& g, bool odd) {
   KernelArgs a = MakeKernelArgs(g);
   a.src = a.dst;
   const bool guo = g.forcing == ForcingScheme::kGuo;
   const bool variable = g.s_nu_field != nullptr;
   if (odd) {
-    if (guo && variable) {
-      InPlaceRows<ForcingScheme::kGuo, true, true>(a, g.threads);
-    } else if (guo) {
-      InPlaceRows<ForcingScheme::kGuo, false, true>(a, g.threads);
-    } else if (variable) {
-      InPlaceRows<ForcingScheme::kSplitMomentum, true, true>(a, g.threads);
-    } else {
-      InPlaceRows<ForcingScheme::kSplitMomentum, false, true>(a, g.threads);
-    }
-  } else if (guo && variable) {
-    InPlaceRows<ForcingScheme::kGuo, true, false>(a, g.threads);
-  } else if (guo) {
-    InPlaceRows<ForcingScheme::kGuo, false, false>(a, g.threads);
-  } else if (variable) {
-    InPlaceRows<ForcingScheme::kSplitMomentum, true, false>(a, g.threads);
+    InPlaceRowsFor<true>(a, guo, variable, g.threads);
   } else {
-    InPlaceRows<ForcingScheme::kSplitMomentum, false, false>(a, g.threads);
+    InPlaceRowsFor<false>(a, guo, variable, g.threads);
   }
 }
 
