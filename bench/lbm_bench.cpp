@@ -46,9 +46,8 @@ std::vector<int> ParseList(const std::string& text) {
   return out;
 }
 
-// Triad a = b + s c over arrays much larger than the caches; counts 3 x 8 B + 8 B write-allocate.
-double TriadBandwidthGBs(int threads) {
-  const std::size_t n = 1 << 25;  // 3 x 256 MiB
+// Triad a = b + s c over three arrays of n doubles each; counts 3 x 8 B + 8 B write-allocate.
+double TriadBandwidthGBs(int threads, std::size_t n = std::size_t{1} << 25) {  // 3 x 256 MiB
   std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
   double best = 0;
   for (int rep = 0; rep < 4; ++rep) {
@@ -77,8 +76,11 @@ struct BenchOptions {
 };
 
 // Best wall-clock MLUPS and CPU-time MLUPS of `lb` over o.repeats runs of about o.seconds.
+// The kernel's footprint in doubles per node: the populations (one or two arrays), the force,
+// rho, u and the viscosity field.
 template <class Lattice>
-void Measure(Lattice& lb, int n, int threads, double bytes_per_update, const BenchOptions& o) {
+void Measure(Lattice& lb, int n, int threads, double bytes_per_update, double doubles_per_node,
+             const BenchOptions& o) {
   lb.InitializeShear(1e-3 / n);
   for (std::size_t k = 0; k < lb.force_x().size(); ++k) lb.force_x()[k] = 1e-8 * (k % 7);
   if (o.viscosity_field) {
@@ -112,8 +114,14 @@ void Measure(Lattice& lb, int n, int threads, double bytes_per_update, const Ben
     best_cpu = std::max(best_cpu, updates / cpu * 1e-6);
   }
   if (!lb.AllFinite()) std::printf("(non-finite state)\n");
-  std::printf("%8d %8d %8d %10.1f %10.1f %12.2f %12.1f\n", n, threads, steps, best,
-              best * bytes_per_update * 1e-3, 1e3 / best, best_cpu);
+  // A STREAM triad over the same footprint (three arrays of a third each), same threads: the
+  // bandwidth the kernel's working set gets from wherever it lives (cache or DRAM).
+  const double footprint = doubles_per_node * static_cast<double>(lb.nodes());
+  const double triad = TriadBandwidthGBs(threads, static_cast<std::size_t>(footprint / 3.0));
+  const double kernel_gbs = best * bytes_per_update * 1e-3;
+  std::printf("%8d %8d %8d %10.1f %10.1f %12.2f %12.1f %10.0f %10.1f %8.0f %%\n", n, threads, steps,
+              best, kernel_gbs, 1e3 / best, best_cpu, footprint * 8e-6, triad,
+              100.0 * kernel_gbs / triad);
   std::fflush(stdout);
 }
 
@@ -202,8 +210,11 @@ int main(int argc, char** argv) {
     std::printf("triad bandwidth, %d thread(s): %.1f GB/s -> bound %.0f MLUPS at %.0f B/update\n",
                 t, bw, bw * 1e3 / bytes_per_update, bytes_per_update);
   }
-  std::printf("%8s %8s %8s %10s %10s %12s %12s\n", "N", "threads", "steps", "MLUPS", "GB/s",
-              "ns/update", "cpu MLUPS");
+  const int q = d3q19 ? 19 : 9, dimension = d3q19 ? 3 : 2;
+  const double doubles_per_node =
+      (in_place ? q : 2 * q) + 2 * dimension + 1 + (o.viscosity_field ? 1 : 0);
+  std::printf("%8s %8s %8s %10s %10s %12s %12s %10s %10s %10s\n", "N", "threads", "steps", "MLUPS",
+              "GB/s", "ns/update", "cpu MLUPS", "MB", "triad GB/s", "of triad");
   for (int n : sizes) {
     for (int t : thread_counts) {
       ehd::LbmParameters p;
@@ -217,10 +228,10 @@ int main(int argc, char** argv) {
       p.pattern = o.pattern;
       if (d3q19) {
         ehd::LatticeBoltzmann3D lb(p);
-        Measure(lb, n, t, bytes_per_update, o);
+        Measure(lb, n, t, bytes_per_update, doubles_per_node, o);
       } else {
         ehd::LatticeBoltzmann2D lb(p);
-        Measure(lb, n, t, bytes_per_update, o);
+        Measure(lb, n, t, bytes_per_update, doubles_per_node, o);
       }
     }
   }

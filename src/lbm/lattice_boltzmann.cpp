@@ -126,8 +126,13 @@ LatticeBoltzmann<L>::LatticeBoltzmann(const LbmParameters& p) : params_(p) {
   }
   n_ = static_cast<std::size_t>(p.nx) * static_cast<std::size_t>(p.ny) *
        static_cast<std::size_t>(p.nz);
-  buffers_[0].assign(L::kQ * n_, 0.0);
-  if (!in_place_) buffers_[1].assign(L::kQ * n_, 0.0);
+  // The streams f[q * stride_ + node] start 40 doubles (5 cache lines) apart modulo a 4 KiB
+  // page: with a stride of a multiple of 4 KiB (64^3, 128^3 nodes) the 19 streams of one node
+  // would fall into the same L1 sets and alias the loads with the stores of the opposite slot.
+  constexpr std::size_t kPage = 512, kOffset = 40;  // doubles
+  stride_ = n_ + (kOffset + kPage - n_ % kPage) % kPage;
+  buffers_[0].assign(L::kQ * stride_, 0.0);
+  if (!in_place_) buffers_[1].assign(L::kQ * stride_, 0.0);
   for (auto& f : force_) f.assign(n_, 0.0);
   rho_.assign(n_, 1.0);
   for (auto& u : u_) u.assign(n_, 0.0);
@@ -237,7 +242,7 @@ void LatticeBoltzmann<L>::InitializeState(const std::vector<double>& rho, const 
         const int k = L::kStressMoment[s];
         fneq += L::kMomentMatrix[k][q] * stress[s] / L::kMomentNorm[k];
       }
-      f[q * n_ + node] = feq + fneq;
+      f[q * stride_ + node] = feq + fneq;
     }
   }
   CollideInPlaceWithoutForce();
@@ -252,20 +257,22 @@ void LatticeBoltzmann<L>::StoreCanonicalInPlace() {
   for (int q = 0; q < L::kQ; ++q) {
     const int o = L::kOpposite[q];
     if (o <= q) continue;
-    for (std::size_t node = 0; node < n_; ++node) std::swap(f[q * n_ + node], f[o * n_ + node]);
+    for (std::size_t node = 0; node < n_; ++node) {
+      std::swap(f[q * stride_ + node], f[o * stride_ + node]);
+    }
   }
   next_odd_ = true;
 }
 
 template <class L>
 const std::vector<double>& LatticeBoltzmann<L>::populations() const {
-  if (!in_place_) return current();
   const std::vector<double>& f = current();
-  canonical_.resize(f.size());
-  if (next_odd_) {
-    // After an even step (or a start): f*_i(x) is in slot opp(i) of x.
+  canonical_.resize(L::kQ * n_);
+  if (!in_place_ || next_odd_) {
+    // Two lattices: f*_i(x) in slot i of x; in place after an even step (or a start): in slot
+    // opp(i) of x. Either way one stream per direction, without the padding.
     for (int q = 0; q < L::kQ; ++q) {
-      const std::size_t from = static_cast<std::size_t>(L::kOpposite[q]) * n_;
+      const std::size_t from = static_cast<std::size_t>(in_place_ ? L::kOpposite[q] : q) * stride_;
       std::copy(f.begin() + from, f.begin() + from + n_, canonical_.begin() + q * n_);
     }
     return canonical_;
@@ -294,7 +301,8 @@ const std::vector<double>& LatticeBoltzmann<L>::populations() const {
         to += static_cast<std::size_t>(c) * stride[a];
       }
       canonical_[q * n_ + node] =
-          wall ? f[static_cast<std::size_t>(L::kOpposite[q]) * n_ + node] : f[q * n_ + to];
+          wall ? f[static_cast<std::size_t>(L::kOpposite[q]) * stride_ + node]
+               : f[q * stride_ + to];
     }
   }
   return canonical_;
@@ -309,12 +317,12 @@ void LatticeBoltzmann<L>::CollideInPlaceWithoutForce() {
   const double zero_force[D] = {};
   for (std::size_t node = 0; node < n_; ++node) {
     double p[Q];
-    for (int q = 0; q < Q; ++q) p[q] = f[q * n_ + node];
+    for (int q = 0; q < Q; ++q) p[q] = f[q * stride_ + node];
     const double s_nu = variable_viscosity_ ? s_nu_field_[node] : s_nu_uniform;
     double u[D];
     CollideNode<L>(p, zero_force, s_nu, rates, params_.forcing, rho_[node], u);
     for (int a = 0; a < D; ++a) u_[a][node] = u[a];
-    for (int q = 0; q < Q; ++q) f[q * n_ + node] = p[q];
+    for (int q = 0; q < Q; ++q) f[q * stride_ + node] = p[q];
   }
 }
 
@@ -383,7 +391,7 @@ void LatticeBoltzmann<L>::StreamCollide() {
   a.nx = params_.nx;
   a.ny = params_.ny;
   a.nz = params_.nz;
-  a.n = n_;
+  a.stream_stride = stride_;
   for (int d = 0; d < L::kDimension; ++d) {
     a.force[d] = force_[d].data();
     a.u[d] = u_[d].data();
@@ -453,7 +461,10 @@ void LatticeBoltzmann<L>::SetPopulations(const std::vector<double>& f) {
       << Q * n_;
     throw std::invalid_argument(m.str());
   }
-  current() = f;
+  std::vector<double>& stored = current();
+  for (int q = 0; q < Q; ++q) {
+    std::copy(f.begin() + q * n_, f.begin() + (q + 1) * n_, stored.begin() + q * stride_);
+  }
   if (in_place_) StoreCanonicalInPlace();
   for (std::size_t node = 0; node < n_; ++node) {
     double r = 0.0, j[D] = {};

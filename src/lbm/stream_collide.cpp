@@ -32,7 +32,7 @@ struct KernelArgs {
   const double* src;
   double* dst;
   int nx, ny;
-  std::size_t n;
+  std::size_t n;  // the population stream stride
   const double* fx;
   const double* fy;
   const double* s_nu_field;  // per node, or nullptr
@@ -326,7 +326,7 @@ KernelArgs MakeKernelArgs(const lbm_kernels::StreamCollideArgs& g) {
   a.dst = g.dst;
   a.nx = g.nx;
   a.ny = g.ny;
-  a.n = g.n;
+  a.n = g.stream_stride;
   a.fx = g.force[0];
   a.fy = g.force[1];
   a.s_nu_field = g.s_nu_field;

@@ -1,6 +1,6 @@
 // The per-lattice stream-collide kernels behind LatticeBoltzmann<L> (internal to the lbm
 // library): one fused pull stream + MRT collide over plain arrays of one layout
-// (f[q * n + node], node = grid index x-fastest), two buffers (read src, write dst).
+// (f[q * stream_stride + node], node = grid index x-fastest), two buffers (read src, write dst).
 #pragma once
 
 #include <cstddef>
@@ -13,7 +13,9 @@ struct StreamCollideArgs {
   const double* src = nullptr;
   double* dst = nullptr;
   int nx = 1, ny = 1, nz = 1;
-  std::size_t n = 0;
+  // Distance between the population streams, f[q * stream_stride + node]: at least the node
+  // count, padded so the streams do not start at the same offset within a 4 KiB page.
+  std::size_t stream_stride = 0;
   const double* force[3] = {nullptr, nullptr, nullptr};
   const double* s_nu_field = nullptr;  // per node, or nullptr: s_nu_uniform
   double s_nu_uniform = 1.0;

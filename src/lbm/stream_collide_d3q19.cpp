@@ -34,7 +34,8 @@ namespace {
 using L = D3Q19;
 constexpr int kQ = L::kQ;
 using Indices = std::make_index_sequence<kQ>;
-constexpr int kChunk = 32;  // nodes per interior block
+constexpr int kChunk = 32;                  // nodes per interior block
+constexpr int kPrefetchAhead = 4 * kChunk;  // nodes ahead of the block fetched into cache
 
 // The 18 moving velocities form 9 opposite pairs (a_p, b_p = opp(a_p)). Every moment row is even
 // (M[k][a] = M[k][opp(a)]: rho, e, eps, the stresses) or odd (M[k][opp(a)] = -M[k][a]: j, q,
@@ -185,52 +186,90 @@ inline double BounceBack(double reflected, int q, double wall_u) {
   return std::fma(6.0 * L::kWeight[q] * L::kC[q][0], wall_u, reflected);
 }
 
-// The interior i = 1..nx-2 of a row, in chunks: the 19 incoming streams (gather[q] + i) are
-// copied into an L1-resident block, the collision runs over the block (one SIMD loop over nodes,
-// every access at a constant offset) and the block is copied to the outgoing streams
-// (scatter[q] + i); rho and u go to the row's nodes (row + i). Both kernels use it: they differ
-// only in where the streams point.
-template <ForcingScheme kForcing, bool kVariableViscosity>
-void InteriorChunks(const lbm_kernels::StreamCollideArgs& a, const double* const* gather,
-                    double* const* scatter, std::size_t row, int nx) {
+// The moving-wall term of the links of a wall row that come from beyond the wall: incoming
+// population q is fma(coefficient[q], wall_u, stored value), the BounceBack of the general node
+// (coefficient 6 w_q c_qx for those links, 0 for the others: fma(0, u, x) = x).
+struct WallLinkTerms {
+  double coefficient[kQ];
+  double wall_u;
+};
+
+// One block of nodes i0 .. i0 + len - 1; kLength > 0 fixes len at compile time (the full blocks:
+// the copies become straight vector moves), 0 takes it from the argument (the tail). With wall
+// terms (a row next to a y wall), the incoming links get them.
+template <ForcingScheme kForcing, bool kVariableViscosity, int kLength, bool kWallTerms>
+__attribute__((always_inline)) inline void CollideBlock(const lbm_kernels::StreamCollideArgs& a,
+                                                        const double* const* gather,
+                                                        double* const* scatter, std::size_t row,
+                                                        std::size_t i0, int tail_length,
+                                                        const WallLinkTerms* wall) {
+  const int len = kLength > 0 ? kLength : tail_length;
   alignas(64) double block[kQ][kChunk];
   alignas(64) double out_rho[kChunk], out_u[3][kChunk];
-  for (int i0 = 1; i0 < nx - 1; i0 += kChunk) {
-    const int len = std::min(kChunk, nx - 1 - i0);
-    for (int q = 0; q < kQ; ++q) {
-      const double* __restrict src = gather[q] + i0;
+  for (int q = 0; q < kQ; ++q) {
+    const double* __restrict src = gather[q] + i0;
+    // 38 streams are more than the hardware prefetchers follow: fetch ahead by hand (a
+    // prefetch past the end of an array does not fault).
+    for (int l = 0; l < kChunk; l += 8) {
+      __builtin_prefetch(src + kPrefetchAhead + l, 0, 3);
+      __builtin_prefetch(scatter[q] + i0 + kPrefetchAhead + l, 1, 3);
+    }
+    if constexpr (kWallTerms) {
+      const double coefficient = wall->coefficient[q], wall_u = wall->wall_u;
+      for (int i = 0; i < len; ++i) block[q][i] = std::fma(coefficient, wall_u, src[i]);
+    } else {
       for (int i = 0; i < len; ++i) block[q][i] = src[i];
     }
-    const std::size_t c = row + i0;
-    const double* __restrict fx = a.force[0] + c;
-    const double* __restrict fy = a.force[1] + c;
-    const double* __restrict fz = a.force[2] + c;
-    const double* __restrict nu = kVariableViscosity ? a.s_nu_field + c : nullptr;
-    for (int i = 0; i < len; ++i) {
-      double p[kQ];
+  }
+  const std::size_t c = row + i0;
+  const double* __restrict fx = a.force[0] + c;
+  const double* __restrict fy = a.force[1] + c;
+  const double* __restrict fz = a.force[2] + c;
+  const double* __restrict nu = kVariableViscosity ? a.s_nu_field + c : nullptr;
+  for (int i = 0; i < len; ++i) {
+    double p[kQ];
 #pragma GCC unroll 19
-      for (int q = 0; q < kQ; ++q) p[q] = block[q][i];
-      const double s_nu = kVariableViscosity ? nu[i] : a.s_nu_uniform;
-      CollideD3Q19<kForcing>(p, fx[i], fy[i], fz[i], s_nu, a.rates, out_rho[i], out_u[0][i],
-                             out_u[1][i], out_u[2][i]);
+    for (int q = 0; q < kQ; ++q) p[q] = block[q][i];
+    const double s_nu = kVariableViscosity ? nu[i] : a.s_nu_uniform;
+    CollideD3Q19<kForcing>(p, fx[i], fy[i], fz[i], s_nu, a.rates, out_rho[i], out_u[0][i],
+                           out_u[1][i], out_u[2][i]);
 #pragma GCC unroll 19
-      for (int q = 0; q < kQ; ++q) block[q][i] = p[q];
-    }
-    for (int q = 0; q < kQ; ++q) {
-      double* __restrict dst = scatter[q] + i0;
-      for (int i = 0; i < len; ++i) dst[i] = block[q][i];
-    }
-    for (int i = 0; i < len; ++i) a.rho[c + i] = out_rho[i];
-    for (int d = 0; d < 3; ++d) {
-      for (int i = 0; i < len; ++i) a.u[d][c + i] = out_u[d][i];
-    }
+    for (int q = 0; q < kQ; ++q) block[q][i] = p[q];
+  }
+  for (int q = 0; q < kQ; ++q) {
+    double* __restrict dst = scatter[q] + i0;
+    for (int i = 0; i < len; ++i) dst[i] = block[q][i];
+  }
+  for (int i = 0; i < len; ++i) a.rho[c + i] = out_rho[i];
+  for (int d = 0; d < 3; ++d) {
+    for (int i = 0; i < len; ++i) a.u[d][c + i] = out_u[d][i];
+  }
+}
+
+// The nodes first .. last - 1 of a stretch, in blocks: the 19 incoming streams (gather[q] + i)
+// are copied into an L1-resident block, the collision runs over the block (one SIMD loop over
+// nodes, every access at a constant offset) and the block is copied to the outgoing streams
+// (scatter[q] + i); rho and u go to the nodes row + i. Both kernels use it: they differ only in
+// where the streams point.
+template <ForcingScheme kForcing, bool kVariableViscosity, bool kWallTerms = false>
+void InteriorChunks(const lbm_kernels::StreamCollideArgs& a, const double* const* gather,
+                    double* const* scatter, std::size_t row, std::size_t first, std::size_t last,
+                    const WallLinkTerms* wall = nullptr) {
+  std::size_t i0 = first;
+  for (; i0 + kChunk <= last; i0 += kChunk) {
+    CollideBlock<kForcing, kVariableViscosity, kChunk, kWallTerms>(a, gather, scatter, row, i0,
+                                                                   kChunk, wall);
+  }
+  if (i0 < last) {
+    CollideBlock<kForcing, kVariableViscosity, 0, kWallTerms>(a, gather, scatter, row, i0,
+                                                              static_cast<int>(last - i0), wall);
   }
 }
 
 template <ForcingScheme kForcing, bool kVariableViscosity>
 void StreamCollideRows(const lbm_kernels::StreamCollideArgs& a) {
   const int nx = a.nx, ny = a.ny, nz = a.nz;
-  const std::size_t n = a.n;
+  const std::size_t n = a.stream_stride;
   const std::size_t plane = static_cast<std::size_t>(nx) * ny;
   auto wrap = [](int v, int period) { return (v % period + period) % period; };
   // General node: gather with wrap and bounce-back, then collide.
@@ -290,7 +329,7 @@ void StreamCollideRows(const lbm_kernels::StreamCollideArgs& a) {
     }
     double* d[kQ];
     for (int q = 0; q < kQ; ++q) d[q] = a.dst + q * n + row;
-    InteriorChunks<kForcing, kVariableViscosity>(a, s, d, row, nx);
+    InteriorChunks<kForcing, kVariableViscosity>(a, s, d, row, 1, nx - 1);
     boundary_node(nx - 1, j, k);
   }
 }
@@ -312,7 +351,7 @@ void StreamCollideRows(const lbm_kernels::StreamCollideArgs& a) {
 template <ForcingScheme kForcing, bool kVariableViscosity, bool kOdd>
 void InPlaceRows(const lbm_kernels::StreamCollideArgs& a) {
   const int nx = a.nx, ny = a.ny, nz = a.nz;
-  const std::size_t n = a.n;
+  const std::size_t n = a.stream_stride;
   const std::size_t plane = static_cast<std::size_t>(nx) * ny;
   double* const f = a.dst;  // the single array (src == dst)
   auto wrap = [](int v, int period) { return (v % period + period) % period; };
@@ -376,34 +415,116 @@ void InPlaceRows(const lbm_kernels::StreamCollideArgs& a) {
       }
     }
   };
+  // The links of wall row j (0 or ny - 1, ny >= 2) that come from beyond its wall.
+  auto wall_terms = [&](int j) {
+    WallLinkTerms terms;
+    const int beyond = j == 0 ? 1 : -1;  // c_y of the links whose source lies beyond the wall
+    terms.wall_u = j == 0 ? a.wall_u_bottom : a.wall_u_top;
+    for (int q = 0; q < kQ; ++q) {
+      terms.coefficient[q] = L::kC[q][1] == beyond ? 6.0 * L::kWeight[q] * L::kC[q][0] : 0.0;
+    }
+    return terms;
+  };
+  if constexpr (!kOdd) {
+    // Even step: no streaming, and only the links from beyond a moving y wall differ from the
+    // plain collision (a resting side wall adds nothing), so the rows between the y walls of a
+    // plane are one contiguous stretch of nodes: long streams the prefetchers follow, no
+    // per-row edge nodes.
+    const int j_begin = a.periodic_y ? 0 : 1, j_end = a.periodic_y ? ny : ny - 1;
+#pragma omp parallel for schedule(static) num_threads(a.threads) if (a.threads != 1)
+    for (int k = 0; k < nz; ++k) {
+      if (!a.periodic_y && ny < 2) {
+        for (int i = 0; i < nx; ++i) general_node(i, 0, k);
+      } else if (!a.periodic_y) {
+        for (const int j : {0, ny - 1}) {
+          const WallLinkTerms terms = wall_terms(j);
+          const std::size_t row = index(0, j, k);
+          const double* gather[kQ];
+          double* scatter[kQ];
+          for (int q = 0; q < kQ; ++q) {
+            gather[q] = f + q * n + row;
+            scatter[q] = f + L::kOpposite[q] * n + row;
+          }
+          InteriorChunks<kForcing, kVariableViscosity, true>(a, gather, scatter, row, 0, nx,
+                                                             &terms);
+        }
+      }
+      if (j_end <= j_begin) continue;
+      const std::size_t start = index(0, j_begin, k);
+      const double* gather[kQ];
+      double* scatter[kQ];
+      for (int q = 0; q < kQ; ++q) {
+        gather[q] = f + q * n + start;
+        scatter[q] = f + L::kOpposite[q] * n + start;
+      }
+      InteriorChunks<kForcing, kVariableViscosity>(a, gather, scatter, start, 0,
+                                                   static_cast<std::size_t>(j_end - j_begin) * nx);
+    }
+    return;
+  }
   const long rows = static_cast<long>(ny) * nz;
 #pragma omp parallel for schedule(static) num_threads(a.threads) if (a.threads != 1)
   for (long row_index = 0; row_index < rows; ++row_index) {
     const int j = static_cast<int>(row_index % ny), k = static_cast<int>(row_index / ny);
-    const bool wall_row =
-        (!a.periodic_y && (j == 0 || j == ny - 1)) || (a.side_walls && (k == 0 || k == nz - 1));
-    if (wall_row || nx < 3) {
+    const bool y_wall_row = !a.periodic_y && (j == 0 || j == ny - 1);
+    if ((a.side_walls && (k == 0 || k == nz - 1)) || nx < 3 || (y_wall_row && ny < 2)) {
       for (int i = 0; i < nx; ++i) general_node(i, j, k);
       continue;
     }
-    general_node(0, j, k);
     const std::size_t row = index(0, j, k);
-    // Interior i = 1..nx-2: all 19 links stay inside; row pointers for the gather and scatter.
+    if (y_wall_row) {
+      // Links from beyond the wall read their own node's slot q (plus the wall term), links
+      // leaving through it write their own node's slot opp(q); the others stream as inside.
+      const WallLinkTerms terms = wall_terms(j);
+      const double* gather[kQ];
+      double* scatter[kQ];
+      for (int q = 0; q < kQ; ++q) {
+        const int sj = j - L::kC[q][1], dj = j + L::kC[q][1];
+        gather[q] = sj < 0 || sj >= ny ? f + q * n + row
+                                       : f + L::kOpposite[q] * n +
+                                             index(0, sj, wrap(k - L::kC[q][2], nz)) - L::kC[q][0];
+        scatter[q] = dj < 0 || dj >= ny
+                         ? f + L::kOpposite[q] * n + row
+                         : f + q * n + index(0, dj, wrap(k + L::kC[q][2], nz)) + L::kC[q][0];
+      }
+      general_node(0, j, k);
+      InteriorChunks<kForcing, kVariableViscosity, true>(a, gather, scatter, row, 1, nx - 1,
+                                                         &terms);
+      general_node(nx - 1, j, k);
+      continue;
+    }
+    // Odd step: node x gathers slot opp(q) of x - c_q and scatters to slot q of x + c_q. The
+    // source and target rows of each direction (y, z wrapped once per row):
+    const double* source_row[kQ];
+    double* target_row[kQ];
+    for (int q = 0; q < kQ; ++q) {
+      const int sj = wrap(j - L::kC[q][1], ny), sk = wrap(k - L::kC[q][2], nz);
+      source_row[q] = f + L::kOpposite[q] * n + index(0, sj, sk);
+      const int dj = wrap(j + L::kC[q][1], ny), dk = wrap(k + L::kC[q][2], nz);
+      target_row[q] = f + q * n + index(0, dj, dk);
+    }
+    // The first and last node of the row: through a side wall node by node; with periodic x
+    // only the x offset wraps, read from the row pointers.
+    auto edge_node = [&](int i) {
+      if (a.side_walls) {
+        general_node(i, j, k);
+        return;
+      }
+      double p[kQ];
+      for (int q = 0; q < kQ; ++q) p[q] = source_row[q][wrap(i - L::kC[q][0], nx)];
+      collide(p, row + i);
+      for (int q = 0; q < kQ; ++q) target_row[q][wrap(i + L::kC[q][0], nx)] = p[q];
+    };
+    edge_node(0);
+    // Interior i = 1..nx-2: all 19 links stay inside the row's neighbours.
     const double* gather[kQ];
     double* scatter[kQ];
     for (int q = 0; q < kQ; ++q) {
-      if (kOdd) {
-        const int sj = wrap(j - L::kC[q][1], ny), sk = wrap(k - L::kC[q][2], nz);
-        gather[q] = f + L::kOpposite[q] * n + index(0, sj, sk) - L::kC[q][0];
-        const int dj = wrap(j + L::kC[q][1], ny), dk = wrap(k + L::kC[q][2], nz);
-        scatter[q] = f + q * n + index(0, dj, dk) + L::kC[q][0];
-      } else {
-        gather[q] = f + q * n + row;
-        scatter[q] = f + L::kOpposite[q] * n + row;
-      }
+      gather[q] = source_row[q] - L::kC[q][0];
+      scatter[q] = target_row[q] + L::kC[q][0];
     }
-    InteriorChunks<kForcing, kVariableViscosity>(a, gather, scatter, row, nx);
-    general_node(nx - 1, j, k);
+    InteriorChunks<kForcing, kVariableViscosity>(a, gather, scatter, row, 1, nx - 1);
+    edge_node(nx - 1);
   }
 }
 

@@ -144,6 +144,7 @@ class LatticeBoltzmann {
 
   LbmParameters params_;
   std::size_t n_ = 0;
+  std::size_t stride_ = 0;  // of the population streams in buffers_ (n_ padded)
   // Two population buffers; the index (not a pointer) keeps the class copyable and movable.
   std::vector<double>& current() { return buffers_[current_index_]; }
   const std::vector<double>& current() const { return buffers_[current_index_]; }
@@ -160,7 +161,7 @@ class LatticeBoltzmann {
   long step_ = 0;
   bool in_place_ = false;
   bool next_odd_ = true;  // in place: the next step is an odd one (the last was even, or a start)
-  mutable std::vector<double> canonical_;  // in place: populations() reconstructed on demand
+  mutable std::vector<double> canonical_;  // populations() without the padding, on demand
 };
 
 extern template class LatticeBoltzmann<D2Q9>;
