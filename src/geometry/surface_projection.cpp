@@ -53,8 +53,17 @@ SurfaceProjector::SurfaceProjector(const TriangleMesh& mesh, double bucket)
   origin_ = x.rowwise().minCoeff();
   const Eigen::Vector3d span = x.rowwise().maxCoeff() - origin_;
   for (int a = 0; a < 3; ++a) extent_[a] = static_cast<int>(span(a) / bucket) + 1;
+  centroid_.resize(3, mesh.triangle_count());
+  radius_.resize(mesh.triangle_count());
   for (int t = 0; t < mesh.triangle_count(); ++t) {
     const auto& tri = mesh.triangles()[t];
+    // The bounding sphere about the centroid, its radius widened by a relative 1e-9 so that the
+    // rejection in Closest never drops a triangle rounding could make the nearest.
+    const Eigen::Vector3d centre = (x.col(tri[0]) + x.col(tri[1]) + x.col(tri[2])) / 3.0;
+    double radius = 0.0;
+    for (int c = 0; c < 3; ++c) radius = std::max(radius, (x.col(tri[c]) - centre).norm());
+    centroid_.col(t) = centre;
+    radius_[t] = radius * (1.0 + 1e-9) + 1e-12 * (centre.norm() + bucket);
     Eigen::Vector3d lo = x.col(tri[0]), hi = lo;
     for (int c = 1; c < 3; ++c) {
       lo = lo.cwiseMin(Eigen::Vector3d(x.col(tri[c])));
@@ -105,6 +114,8 @@ SurfacePoint SurfaceProjector::Closest(const Eigen::Vector3d& p) const {
           const auto it = buckets_.find(Key(i, j, k));
           if (it == buckets_.end()) continue;
           for (int t : it->second) {
+            // No point of the triangle is nearer than its bounding sphere.
+            if ((p - centroid_.col(t)).norm() - radius_[t] >= best.distance) continue;
             const auto& tri = mesh_.triangles()[t];
             SurfacePoint s = ClosestPointOnTriangle(p, x.col(tri[0]), x.col(tri[1]), x.col(tri[2]));
             if (s.distance < best.distance) {

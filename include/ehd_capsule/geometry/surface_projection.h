@@ -39,6 +39,8 @@ class SurfaceProjector {
   double bucket_;
   Eigen::Vector3d origin_;
   int extent_[3];
+  Eigen::Matrix3Xd centroid_;   // of each triangle
+  std::vector<double> radius_;  // of each triangle's bounding sphere about its centroid
   std::unordered_map<long, std::vector<int>> buckets_;
 };
 
