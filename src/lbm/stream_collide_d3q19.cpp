@@ -431,6 +431,21 @@ void InPlaceRows(const lbm_kernels::StreamCollideArgs& a) {
     // plane are one contiguous stretch of nodes: long streams the prefetchers follow, no
     // per-row edge nodes.
     const int j_begin = a.periodic_y ? 0 : 1, j_end = a.periodic_y ? ny : ny - 1;
+    // Nodes start .. start + count - 1 collide in place: slot q in, slot opp(q) out.
+    auto collide_stretch = [&](std::size_t start, std::size_t count, const WallLinkTerms* terms) {
+      const double* gather[kQ];
+      double* scatter[kQ];
+      for (int q = 0; q < kQ; ++q) {
+        gather[q] = f + q * n + start;
+        scatter[q] = f + L::kOpposite[q] * n + start;
+      }
+      if (terms != nullptr) {
+        InteriorChunks<kForcing, kVariableViscosity, true>(a, gather, scatter, start, 0, count,
+                                                           terms);
+      } else {
+        InteriorChunks<kForcing, kVariableViscosity>(a, gather, scatter, start, 0, count);
+      }
+    };
 #pragma omp parallel for schedule(static) num_threads(a.threads) if (a.threads != 1)
     for (int k = 0; k < nz; ++k) {
       if (!a.periodic_y && ny < 2) {
@@ -438,27 +453,13 @@ void InPlaceRows(const lbm_kernels::StreamCollideArgs& a) {
       } else if (!a.periodic_y) {
         for (const int j : {0, ny - 1}) {
           const WallLinkTerms terms = wall_terms(j);
-          const std::size_t row = index(0, j, k);
-          const double* gather[kQ];
-          double* scatter[kQ];
-          for (int q = 0; q < kQ; ++q) {
-            gather[q] = f + q * n + row;
-            scatter[q] = f + L::kOpposite[q] * n + row;
-          }
-          InteriorChunks<kForcing, kVariableViscosity, true>(a, gather, scatter, row, 0, nx,
-                                                             &terms);
+          collide_stretch(index(0, j, k), nx, &terms);
         }
       }
-      if (j_end <= j_begin) continue;
-      const std::size_t start = index(0, j_begin, k);
-      const double* gather[kQ];
-      double* scatter[kQ];
-      for (int q = 0; q < kQ; ++q) {
-        gather[q] = f + q * n + start;
-        scatter[q] = f + L::kOpposite[q] * n + start;
+      if (j_end > j_begin) {
+        collide_stretch(index(0, j_begin, k), static_cast<std::size_t>(j_end - j_begin) * nx,
+                        nullptr);
       }
-      InteriorChunks<kForcing, kVariableViscosity>(a, gather, scatter, start, 0,
-                                                   static_cast<std::size_t>(j_end - j_begin) * nx);
     }
     return;
   }
