@@ -55,6 +55,7 @@ FastPoissonSolver::FastPoissonSolver(const Grid2D& grid, const PoissonBoundaries
     }
   }
   std::lock_guard<std::mutex> lock(PlannerMutex());
+  poisson_detail::ImportWisdom();
   plans_->buffer = fftw_alloc_real(grid.size());
   // Row-major [ny][nx]: the first FFTW dimension is y, matching index = j * nx + i.
   plans_->forward = fftw_plan_r2r_2d(ny, nx, plans_->buffer, plans_->buffer, ay.forward, ax.forward,
@@ -64,6 +65,7 @@ FastPoissonSolver::FastPoissonSolver(const Grid2D& grid, const PoissonBoundaries
   if (!plans_->forward || !plans_->inverse) {
     throw std::runtime_error("FastPoissonSolver: FFTW could not make a plan");
   }
+  poisson_detail::ExportWisdom();
 }
 
 FastPoissonSolver::~FastPoissonSolver() {

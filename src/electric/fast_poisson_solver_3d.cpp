@@ -52,6 +52,7 @@ FastPoissonSolver3D::FastPoissonSolver3D(const Grid3D& grid, const PoissonBounda
     }
   }
   std::lock_guard<std::mutex> lock(PlannerMutex());
+  poisson_detail::ImportWisdom();
   plans_->buffer = fftw_alloc_real(grid.size());
   // Row-major [nz][ny][nx]: the first FFTW dimension is z (index = (k ny + j) nx + i).
   plans_->forward = fftw_plan_r2r_3d(grid.nz, grid.ny, grid.nx, plans_->buffer, plans_->buffer,
@@ -61,6 +62,7 @@ FastPoissonSolver3D::FastPoissonSolver3D(const Grid3D& grid, const PoissonBounda
   if (!plans_->forward || !plans_->inverse) {
     throw std::runtime_error("FastPoissonSolver3D: FFTW could not make a plan");
   }
+  poisson_detail::ExportWisdom();
 }
 
 FastPoissonSolver3D::~FastPoissonSolver3D() {

@@ -22,6 +22,18 @@ inline std::mutex& PlannerMutex() {
   return m;
 }
 
+// Plans are chosen by timing (FFTW_MEASURE), so two processes can pick different algorithms for
+// the same transform, which round differently: runs and restarts would repeat only to rounding.
+// The plans are therefore kept in a wisdom file shared by the processes of a machine: the first
+// process to plan a size measures it and writes the file, later ones read the same plan. The
+// file is $EHD_FFTW_WISDOM, else $XDG_CACHE_HOME/ehd_capsule/fftw_wisdom, else
+// $HOME/.cache/ehd_capsule/fftw_wisdom; EHD_FFTW_WISDOM=off plans afresh in every process.
+// Two processes measuring the same new size at the same moment may still differ (the later
+// write wins). Call both with PlannerMutex held, around the planning.
+std::string WisdomPath();  // empty: no file
+void ImportWisdom();
+void ExportWisdom();
+
 struct AxisTransform {
   fftw_r2r_kind forward;
   fftw_r2r_kind inverse;

@@ -4,10 +4,14 @@
 // converge at second order.
 #include "ehd_capsule/electric/fast_poisson_solver_3d.h"
 
+#include <fftw3.h>
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
+#include <string>
 
 namespace ehd {
 namespace {
@@ -153,6 +157,33 @@ TEST(FastPoissonSolver3D, RejectsUnpairedPeriodicFacesAndWrongData) {
   data.x_min.assign(3, 0.0);
   std::vector<double> rhs(g.size(), 0.0);
   EXPECT_THROW(AddBoundaryDataToRhs(g, PoissonBoundaries3D{}, data, rhs), std::invalid_argument);
+}
+
+// The plans go to the wisdom file (src/electric/poisson_axis.h), which FFTW reads back, so a
+// later process plans the same transforms the same way; EHD_FFTW_WISDOM=off writes none. (That
+// two processes then repeat a field run bit for bit is checked by hand in
+// docs/validation_3d_ehd.md: one process cannot show it.)
+TEST(FastPoissonSolver3D, PlansAreKeptInTheWisdomFile) {
+  const char* before = std::getenv("EHD_FFTW_WISDOM");
+  const std::string saved = before ? before : "";
+  const std::string path = ::testing::TempDir() + "/ehd_fftw_wisdom_test";
+  std::remove(path.c_str());
+  setenv("EHD_FFTW_WISDOM", path.c_str(), 1);
+  const Grid3D g{6, 5, 4, 0.25, 0, 0, 0};
+  { FastPoissonSolver3D solver(g, PoissonBoundaries3D{}); }
+  std::FILE* file = std::fopen(path.c_str(), "r");
+  ASSERT_NE(file, nullptr) << path;
+  std::fclose(file);
+  EXPECT_EQ(fftw_import_wisdom_from_filename(path.c_str()), 1);
+  std::remove(path.c_str());
+  setenv("EHD_FFTW_WISDOM", "off", 1);
+  { FastPoissonSolver3D solver(g, PoissonBoundaries3D{}); }
+  EXPECT_EQ(std::fopen(path.c_str(), "r"), nullptr);
+  if (before) {
+    setenv("EHD_FFTW_WISDOM", saved.c_str(), 1);
+  } else {
+    unsetenv("EHD_FFTW_WISDOM");
+  }
 }
 
 }  // namespace
