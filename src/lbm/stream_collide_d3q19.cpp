@@ -182,8 +182,9 @@ __attribute__((always_inline)) inline void CollideD3Q19(double* f, double fx, do
 
 // The half-way bounce-back population of a wall moving at u_w along x: f*_opp(q) + 6 w_q c_qx
 // u_w, as one explicit fused multiply-add so both kernels round it the same way.
+inline double MovingWallCoefficient(int q) { return 6.0 * L::kWeight[q] * L::kC[q][0]; }
 inline double BounceBack(double reflected, int q, double wall_u) {
-  return std::fma(6.0 * L::kWeight[q] * L::kC[q][0], wall_u, reflected);
+  return std::fma(MovingWallCoefficient(q), wall_u, reflected);
 }
 
 // The moving-wall term of the links of a wall row that come from beyond the wall: incoming
@@ -421,7 +422,7 @@ void InPlaceRows(const lbm_kernels::StreamCollideArgs& a) {
     const int beyond = j == 0 ? 1 : -1;  // c_y of the links whose source lies beyond the wall
     terms.wall_u = j == 0 ? a.wall_u_bottom : a.wall_u_top;
     for (int q = 0; q < kQ; ++q) {
-      terms.coefficient[q] = L::kC[q][1] == beyond ? 6.0 * L::kWeight[q] * L::kC[q][0] : 0.0;
+      terms.coefficient[q] = L::kC[q][1] == beyond ? MovingWallCoefficient(q) : 0.0;
     }
     return terms;
   };
