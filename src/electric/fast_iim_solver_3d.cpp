@@ -27,6 +27,35 @@ void Monomials(double a, double b, double c, double* m) {
   for (int i = 0; i < 20; ++i) m[i] = v[i];
 }
 
+// The rows gamma_k(q) = w_q m_q^T M^-1 e_k (k = 1, 2, 3: the c_xi, c_eta1, c_eta2 rows, times
+// inv_h) of the weighted least-squares fit with the first kTerms monomials (M: its leading
+// block of normal_matrix); rows[k] null: not wanted. False for fewer than 1.5 kTerms nodes or an
+// ill-conditioned M (nothing written): M is symmetric positive definite, so it is factored by
+// Cholesky, and its conditioning measured by the pivots d_i = L_ii^2, whose ratio min d / max d
+// bounds the reciprocal condition number from above (every d_i lies in [lambda_min,
+// lambda_max]) and falls to rounding level for a rank-deficient M; below 1e-12 it is refused.
+template <int kTerms>
+bool FitRows(const Eigen::Matrix<double, 20, 20>& normal_matrix,
+             const Eigen::Map<const Eigen::Matrix<double, 20, Eigen::Dynamic>>& monomials,
+             const std::vector<double>& weight, double inv_h, double* const rows[3]) {
+  const int m = static_cast<int>(monomials.cols());
+  if (m < kTerms + kTerms / 2) return false;
+  const Eigen::LLT<Eigen::Matrix<double, kTerms, kTerms>> llt(
+      normal_matrix.topLeftCorner<kTerms, kTerms>());
+  if (llt.info() != Eigen::Success) return false;
+  const auto pivots = llt.matrixLLT().diagonal().array().square();
+  if (!(pivots.minCoeff() > 1e-12 * pivots.maxCoeff())) return false;
+  const Eigen::Matrix<double, kTerms, 3> x =
+      llt.solve(Eigen::Matrix<double, kTerms, kTerms>::Identity().template middleCols<3>(1));
+  for (int k = 0; k < 3; ++k) {
+    if (rows[k] == nullptr) continue;
+    const Eigen::Matrix<double, kTerms, 1> xk = x.col(k) * inv_h;
+    for (int q = 0; q < m; ++q) {
+      rows[k][q] = weight[q] * monomials.col(q).template head<kTerms>().dot(xk);
+    }
+  }
+  return true;
+}
 }  // namespace
 
 FastIimSolver3D::FastIimSolver3D(const Grid3D& grid, const PoissonBoundaries3D& bc,
@@ -69,6 +98,28 @@ void FastIimSolver3D::CheckResolution(const TriangleMesh& surface) const {
   }
 }
 
+template <typename Visit>
+void FastIimSolver3D::ForEachFitNode(const TriangleMesh& surface, int v, const Visit& visit) const {
+  const Grid3D& g = grid();
+  const double h = g.h, alpha = options_.fit_radius_h * h, alpha2 = alpha * alpha;
+  const int reach = static_cast<int>(std::ceil(alpha / h)) + 1;
+  const Eigen::Vector3d p = surface.vertices().col(v);
+  const int ci = static_cast<int>(std::floor((p.x() - g.x0) / h));
+  const int cj = static_cast<int>(std::floor((p.y() - g.y0) / h));
+  const int ck = static_cast<int>(std::floor((p.z() - g.z0) / h));
+  for (int k = std::max(0, ck - reach); k <= std::min(g.nz - 1, ck + reach); ++k) {
+    const double dz = g.z(k) - p.z();
+    for (int j = std::max(0, cj - reach); j <= std::min(g.ny - 1, cj + reach); ++j) {
+      const double dy = g.y(j) - p.y(), dyz2 = dy * dy + dz * dz;
+      if (dyz2 >= alpha2) continue;
+      for (int i = std::max(0, ci - reach); i <= std::min(g.nx - 1, ci + reach); ++i) {
+        const double dx = g.x(i) - p.x(), r2 = dx * dx + dyz2;
+        if (r2 < alpha2) visit(g.index(i, j, k), Eigen::Vector3d(dx, dy, dz), r2);
+      }
+    }
+  }
+}
+
 void FastIimSolver3D::SetUpBand(const TriangleMesh& surface) {
   const Grid3D& g = grid();
   slot_.assign(g.size(), -1);
@@ -100,25 +151,11 @@ void FastIimSolver3D::SetUpBand(const TriangleMesh& surface) {
       }
     }
   }
-  // Outside nodes within the fit radius of a vertex.
-  const double alpha = options_.fit_radius_h * g.h;
-  const int reach = static_cast<int>(std::ceil(alpha / g.h)) + 1;
-  const Eigen::Matrix3Xd& x = surface.vertices();
+  // Outside nodes within the fit radius of a vertex (the nodes of SetUpFits).
   for (int v = 0; v < surface.vertex_count(); ++v) {
-    const Eigen::Vector3d p = x.col(v);
-    const int ci = static_cast<int>(std::floor((p.x() - g.x0) / g.h));
-    const int cj = static_cast<int>(std::floor((p.y() - g.y0) / g.h));
-    const int ck = static_cast<int>(std::floor((p.z() - g.z0) / g.h));
-    for (int k = std::max(0, ck - reach); k <= std::min(g.nz - 1, ck + reach); ++k) {
-      for (int j = std::max(0, cj - reach); j <= std::min(g.ny - 1, cj + reach); ++j) {
-        for (int i = std::max(0, ci - reach); i <= std::min(g.nx - 1, ci + reach); ++i) {
-          const std::size_t c = g.index(i, j, k);
-          if (sides_.side[c] < 0) continue;
-          if ((Eigen::Vector3d(g.x(i), g.y(j), g.z(k)) - p).norm() >= alpha) continue;
-          add(c);
-        }
-      }
-    }
+    ForEachFitNode(surface, v, [&](std::size_t c, const Eigen::Vector3d&, double) {
+      if (sides_.side[c] >= 0) add(c);
+    });
   }
   // Foot points and the rows of J (interface_jumps_3d.h).
   const std::size_t nb = band_node_.size();
@@ -159,114 +196,90 @@ void FastIimSolver3D::SetUpBand(const TriangleMesh& surface) {
 void FastIimSolver3D::SetUpFits(const TriangleMesh& surface) {
   const Grid3D& g = grid();
   const double h = g.h, alpha = options_.fit_radius_h * h;
-  const int reach = static_cast<int>(std::ceil(alpha / h)) + 1;
-  const Eigen::Matrix3Xd& x = surface.vertices();
   const int nv = surface.vertex_count();
   fit_normal_.resize(3, nv);
   fit_t1_.resize(3, nv);
   fit_t2_.resize(3, nv);
-  // One fit per vertex, independent (threaded); laid out in vertex order afterwards, so the
-  // result does not depend on the thread count.
-  struct VertexFit {
-    std::vector<std::size_t> nodes;
-    Eigen::MatrixXd rows;       // m x 3: the c_xi, c_eta1, c_eta2 rows
-    std::vector<double> check;  // the one-degree-lower fit's c_xi row (or c_xi again)
-    std::string error;
-  };
-  std::vector<VertexFit> fits(nv);
-  const int threads = options_.threads > 0 ? options_.threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads) if (threads != 1)
+  // The rows are laid out in vertex order: count first, then each vertex fills its own range
+  // (threaded, independent; the result does not depend on the thread count).
+  fit_offset_.assign(nv + 1, 0);
   for (int v = 0; v < nv; ++v) {
-    VertexFit& out = fits[v];
-    const SurfacePatch& patch = fit_->patch(v);
-    const Eigen::Vector3d normal = (patch.t1 + patch.height[0] * patch.n)
-                                       .cross(patch.t2 + patch.height[1] * patch.n)
-                                       .normalized();
-    const Eigen::Vector3d t1 = (patch.t1 - patch.t1.dot(normal) * normal).normalized();
-    const Eigen::Vector3d t2 = normal.cross(t1);
-    const Eigen::Vector3d p = x.col(v);
-    fit_normal_.col(v) = normal;
-    fit_t1_.col(v) = t1;
-    fit_t2_.col(v) = t2;
-    std::vector<Eigen::Vector3d> local;
-    std::vector<double> weight;
-    const int ci = static_cast<int>(std::floor((p.x() - g.x0) / h));
-    const int cj = static_cast<int>(std::floor((p.y() - g.y0) / h));
-    const int ck = static_cast<int>(std::floor((p.z() - g.z0) / h));
-    for (int k = std::max(0, ck - reach); k <= std::min(g.nz - 1, ck + reach); ++k) {
-      for (int j = std::max(0, cj - reach); j <= std::min(g.ny - 1, cj + reach); ++j) {
-        for (int i = std::max(0, ci - reach); i <= std::min(g.nx - 1, ci + reach); ++i) {
-          const Eigen::Vector3d r = Eigen::Vector3d(g.x(i), g.y(j), g.z(k)) - p;
-          const double dist = r.norm();
-          if (dist >= alpha) continue;
-          out.nodes.push_back(g.index(i, j, k));
-          local.emplace_back(r.dot(normal) / h, r.dot(t1) / h, r.dot(t2) / h);
-          weight.push_back(0.5 * (1.0 + std::cos(kPi * dist / alpha)));  // eq. (67)
-        }
-      }
-    }
-    const int m = static_cast<int>(out.nodes.size());
-    // Weighted least squares by the normal equations M c = A^T W y, M = A^T W A (20 x 20 or
-    // 10 x 10, coordinates in units of h): only the rows of M^-1 A^T W for c_xi, c_eta1, c_eta2
-    // are needed, gamma_k(q) = w_q m_q^T M^-1 e_k, at O(m terms^2) per vertex. A fit whose M is
-    // ill-conditioned (reciprocal condition < 1e-12) drops to the quadratic.
-    const auto fit_rows = [&](int degree, Eigen::MatrixXd& rows) {
-      const int terms = degree == 3 ? 20 : 10;
-      if (m < terms + terms / 2) return false;
-      Eigen::MatrixXd mono(terms, m);
-      double row[20];
-      for (int q = 0; q < m; ++q) {
-        Monomials(local[q].x(), local[q].y(), local[q].z(), row);
-        for (int t = 0; t < terms; ++t) mono(t, q) = row[t];
-      }
-      const Eigen::MatrixXd normal_matrix =
-          mono * Eigen::Map<const Eigen::VectorXd>(weight.data(), m).asDiagonal() *
-          mono.transpose();
-      const Eigen::LDLT<Eigen::MatrixXd> ldlt(normal_matrix);
-      if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12)) return false;
-      const Eigen::MatrixXd x =
-          ldlt.solve(Eigen::MatrixXd::Identity(terms, terms).middleCols(1, 3));
-      rows = ((mono.transpose() * x).array().colwise() *
-              Eigen::Map<const Eigen::ArrayXd>(weight.data(), m))
-                 .matrix() /
-             h;
-      return true;
-    };
-    Eigen::MatrixXd check_rows;
-    int degree = options_.fit_degree;
-    while (degree >= 2 && !fit_rows(degree, out.rows)) --degree;
-    if (degree < 2) {
-      out.error = "3D immersed interface: the normal-derivative fit at vertex " +
-                  std::to_string(v) + " has " + std::to_string(m) +
-                  " nodes within fit_radius_h (a quadratic needs 15 in general position); "
-                  "the surface is too close to the box or the grid too coarse";
-      continue;
-    }
-    // The one-degree-lower fit, for the resolution check after the solve (the cubic and the
-    // quadratic agree to O(h^2) where the field is resolved near the surface).
-    const bool has_check = degree == 3 && fit_rows(2, check_rows);
-    out.check.resize(m);
-    for (int q = 0; q < m; ++q) out.check[q] = has_check ? check_rows(q, 0) : out.rows(q, 0);
+    int m = 0;
+    ForEachFitNode(surface, v, [&](std::size_t, const Eigen::Vector3d&, double) { ++m; });
+    fit_offset_[v + 1] = fit_offset_[v] + m;
   }
-  fit_offset_.assign(1, 0);
-  fit_node_.clear();
-  fit_slot_.clear();
-  fit_gamma_.clear();
-  fit_gamma_t1_.clear();
-  fit_gamma_t2_.clear();
-  fit_gamma_check_.clear();
-  for (int v = 0; v < nv; ++v) {
-    const VertexFit& f = fits[v];
-    if (!f.error.empty()) throw SolverError(f.error);  // the lowest such vertex
-    for (std::size_t q = 0; q < f.nodes.size(); ++q) {
-      fit_node_.push_back(f.nodes[q]);
-      fit_slot_.push_back(sides_.side[f.nodes[q]] > 0 ? slot_[f.nodes[q]] : -1);
-      fit_gamma_.push_back(f.rows(q, 0));
-      fit_gamma_t1_.push_back(f.rows(q, 1));
-      fit_gamma_t2_.push_back(f.rows(q, 2));
-      fit_gamma_check_.push_back(f.check[q]);
+  const std::size_t total = static_cast<std::size_t>(fit_offset_[nv]);
+  fit_node_.resize(total);
+  fit_slot_.resize(total);
+  fit_gamma_.resize(total);
+  fit_gamma_t1_.resize(total);
+  fit_gamma_t2_.resize(total);
+  fit_gamma_check_.resize(total);
+  std::vector<int> failed(nv, 0);
+  const int threads = options_.threads > 0 ? options_.threads : omp_get_max_threads();
+#pragma omp parallel num_threads(threads) if (threads != 1)
+  {
+    // Per thread: the monomials (node-major, 20 a node) and weights of one vertex's nodes.
+    std::vector<double> mono, weight;
+#pragma omp for schedule(dynamic, 16)
+    for (int v = 0; v < nv; ++v) {
+      const SurfacePatch& patch = fit_->patch(v);
+      const Eigen::Vector3d normal = (patch.t1 + patch.height[0] * patch.n)
+                                         .cross(patch.t2 + patch.height[1] * patch.n)
+                                         .normalized();
+      const Eigen::Vector3d t1 = (patch.t1 - patch.t1.dot(normal) * normal).normalized();
+      const Eigen::Vector3d t2 = normal.cross(t1);
+      fit_normal_.col(v) = normal;
+      fit_t1_.col(v) = t1;
+      fit_t2_.col(v) = t2;
+      const int offset = fit_offset_[v];
+      const int m = fit_offset_[v + 1] - offset;
+      mono.resize(20 * static_cast<std::size_t>(m));
+      weight.resize(m);
+      int q = 0;
+      ForEachFitNode(surface, v, [&](std::size_t node, const Eigen::Vector3d& r, double r2) {
+        fit_node_[offset + q] = node;
+        fit_slot_[offset + q] = sides_.side[node] > 0 ? slot_[node] : -1;
+        Monomials(r.dot(normal) / h, r.dot(t1) / h, r.dot(t2) / h, &mono[20 * q]);
+        weight[q] = 0.5 * (1.0 + std::cos(kPi * std::sqrt(r2) / alpha));  // eq. (67)
+        ++q;
+      });
+      // Weighted least squares by the normal equations M c = A^T W y, M = A^T W A (coordinates
+      // in units of h; the quadratic's M is the cubic's leading 10 x 10 block): only the rows of
+      // M^-1 A^T W for c_xi, c_eta1, c_eta2 are needed, gamma_k(q) = w_q m_q^T M^-1 e_k. A cubic
+      // whose M is ill-conditioned (FitRows) drops to the quadratic.
+      Eigen::Matrix<double, 20, 20> normal_matrix = Eigen::Matrix<double, 20, 20>::Zero();
+      for (int n = 0; n < m; ++n) {
+        const Eigen::Map<const Eigen::Matrix<double, 20, 1>> row(&mono[20 * n]);
+        normal_matrix.noalias() += (weight[n] * row) * row.transpose();
+      }
+      const Eigen::Map<const Eigen::Matrix<double, 20, Eigen::Dynamic>> monomials(mono.data(), 20,
+                                                                                  m);
+      double* const rows[3] = {&fit_gamma_[offset], &fit_gamma_t1_[offset], &fit_gamma_t2_[offset]};
+      double* check = &fit_gamma_check_[offset];
+      const bool cubic =
+          options_.fit_degree == 3 && FitRows<20>(normal_matrix, monomials, weight, 1.0 / h, rows);
+      // The one-degree-lower fit, for the resolution check after the solve (the cubic and the
+      // quadratic agree to O(h^2) where the field is resolved near the surface); without the
+      // cubic, the quadratic is the fit and its own check.
+      double* const check_only[3] = {check, nullptr, nullptr};
+      const bool quadratic =
+          FitRows<10>(normal_matrix, monomials, weight, 1.0 / h, cubic ? check_only : rows);
+      if (!cubic && !quadratic) {
+        failed[v] = 1;
+      } else if (!cubic || !quadratic) {
+        std::copy(rows[0], rows[0] + m, check);
+      }
     }
-    fit_offset_.push_back(static_cast<int>(fit_node_.size()));
+  }
+  for (int v = 0; v < nv; ++v) {
+    if (failed[v]) {  // the lowest such vertex
+      throw SolverError("3D immersed interface: the normal-derivative fit at vertex " +
+                        std::to_string(v) + " has " +
+                        std::to_string(fit_offset_[v + 1] - fit_offset_[v]) +
+                        " nodes within fit_radius_h (a quadratic needs 15 in general position); "
+                        "the surface is too close to the box or the grid too coarse");
+    }
   }
 }
 

@@ -63,6 +63,47 @@ void Basis(double u, double w, double* b) {
   b[9] = w * w * w;
 }
 
+// The least squares of FitPatch in matrices of type Matrix (fixed maximum size or dynamic).
+template <typename Matrix>
+void FitPatchLeastSquares(const Eigen::Matrix3Xd& x, int height_terms, int function_terms,
+                          SurfacePatch& p) {
+  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, Matrix::MaxRowsAtCompileTime, 1>;
+  const int m = static_cast<int>(p.support.size());
+  double mean_square = 0;
+  for (int j = 1; j < m; ++j) mean_square += (x.col(p.support[j]) - p.origin).squaredNorm();
+  mean_square /= (m - 1);
+  // Height through the vertex over the neighbours; the function over the vertex and them.
+  Matrix a(m - 1, height_terms);
+  Vector b(m - 1);
+  Matrix af(m, function_terms);
+  Vector weight_root(m);
+  for (int j = 0; j < m; ++j) {
+    const Eigen::Vector3d d = x.col(p.support[j]) - p.origin;
+    const double u = d.dot(p.t1), w = d.dot(p.t2), h = d.dot(p.n);
+    const double weight = 1.0 / (d.squaredNorm() + (j == 0 ? mean_square : 0.0));
+    weight_root(j) = std::sqrt(weight);
+    double basis[10];
+    Basis(u, w, basis);
+    for (int t = 0; t < function_terms; ++t) af(j, t) = basis[t] * weight_root(j);
+    if (j > 0) {
+      for (int t = 0; t < height_terms; ++t) a(j - 1, t) = basis[t + 1] * weight;
+      b(j - 1) = h * weight;
+    }
+  }
+  const Vector c = a.colPivHouseholderQr().solve(b);
+  p.height.fill(0.0);
+  for (int k = 0; k < height_terms; ++k) p.height[k] = c(k);
+  const double fu = c(0), fw = c(1);
+  Eigen::Matrix2d first, hess;
+  first << 1 + fu * fu, fu * fw, fu * fw, 1 + fw * fw;
+  hess << 2 * c(2), c(3), c(3), 2 * c(4);
+  p.curvature_sum = -(first.inverse() * hess).trace() / std::sqrt(1 + fu * fu + fw * fw);
+  p.gaussian_curvature = hess.determinant() / std::pow(1 + fu * fu + fw * fw, 2);
+  // function_fit = (W^1/2 A)^+ W^1/2: coefficients = function_fit * values(support).
+  const Matrix weights = weight_root.asDiagonal();
+  p.function_fit = Eigen::MatrixXd::Zero(10, m);
+  p.function_fit.topRows(function_terms) = af.colPivHouseholderQr().solve(weights);
+}
 }  // namespace
 
 LocalSurfaceFit::LocalSurfaceFit(const TriangleMesh& mesh, double bucket, int rings, int degree,
@@ -109,53 +150,26 @@ void LocalSurfaceFit::FitPatch(const TriangleMesh& mesh, const Eigen::Matrix3Xd&
                                int rings, int height_terms, int function_terms,
                                std::vector<int>& mark, SurfacePatch& p) {
   const Eigen::Matrix3Xd& x = mesh.vertices();
-  {
-    p.support = Rings(mesh, v, rings, mark);
-    const int m = static_cast<int>(p.support.size());
-    if (m < function_terms + 1) {
-      throw std::runtime_error("LocalSurfaceFit: vertex " + std::to_string(v) + " has " +
-                               std::to_string(m - 1) + " neighbours within " +
-                               std::to_string(rings) + " rings (" + std::to_string(function_terms) +
-                               " needed)");
-    }
-    p.origin = x.col(v);
-    p.n = normal.col(v).normalized();
-    p.t1 = p.n.unitOrthogonal();
-    p.t2 = p.n.cross(p.t1);
-    double mean_square = 0;
-    for (int j = 1; j < m; ++j) mean_square += (x.col(p.support[j]) - p.origin).squaredNorm();
-    mean_square /= (m - 1);
-    // Height through the vertex over the neighbours; the function over the vertex and them.
-    Eigen::MatrixXd a(m - 1, height_terms);
-    Eigen::VectorXd b(m - 1);
-    Eigen::MatrixXd af(m, function_terms);
-    Eigen::VectorXd weight_root(m);
-    for (int j = 0; j < m; ++j) {
-      const Eigen::Vector3d d = x.col(p.support[j]) - p.origin;
-      const double u = d.dot(p.t1), w = d.dot(p.t2), h = d.dot(p.n);
-      const double weight = 1.0 / (d.squaredNorm() + (j == 0 ? mean_square : 0.0));
-      weight_root(j) = std::sqrt(weight);
-      double basis[10];
-      Basis(u, w, basis);
-      for (int t = 0; t < function_terms; ++t) af(j, t) = basis[t] * weight_root(j);
-      if (j > 0) {
-        for (int t = 0; t < height_terms; ++t) a(j - 1, t) = basis[t + 1] * weight;
-        b(j - 1) = h * weight;
-      }
-    }
-    const Eigen::VectorXd c = a.colPivHouseholderQr().solve(b);
-    p.height.fill(0.0);
-    for (int k = 0; k < height_terms; ++k) p.height[k] = c(k);
-    const double fu = c(0), fw = c(1);
-    Eigen::Matrix2d first, hess;
-    first << 1 + fu * fu, fu * fw, fu * fw, 1 + fw * fw;
-    hess << 2 * c(2), c(3), c(3), 2 * c(4);
-    p.curvature_sum = -(first.inverse() * hess).trace() / std::sqrt(1 + fu * fu + fw * fw);
-    p.gaussian_curvature = hess.determinant() / std::pow(1 + fu * fu + fw * fw, 2);
-    // function_fit = (W^1/2 A)^+ W^1/2: coefficients = function_fit * values(support).
-    const Eigen::MatrixXd weights = weight_root.asDiagonal();
-    p.function_fit = Eigen::MatrixXd::Zero(10, m);
-    p.function_fit.topRows(function_terms) = af.colPivHouseholderQr().solve(weights);
+  p.support = Rings(mesh, v, rings, mark);
+  const int m = static_cast<int>(p.support.size());
+  if (m < function_terms + 1) {
+    throw std::runtime_error("LocalSurfaceFit: vertex " + std::to_string(v) + " has " +
+                             std::to_string(m - 1) + " neighbours within " + std::to_string(rings) +
+                             " rings (" + std::to_string(function_terms) + " needed)");
+  }
+  p.origin = x.col(v);
+  p.n = normal.col(v).normalized();
+  p.t1 = p.n.unitOrthogonal();
+  p.t2 = p.n.cross(p.t1);
+  // Two rings hold at most kSmallSupport vertices on the meshes of this package (valence <= 8):
+  // their least squares run in matrices on the stack (the fits are redone at every electric
+  // solve); larger supports on the heap, with the same arithmetic.
+  if (m <= kSmallSupport) {
+    FitPatchLeastSquares<
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kSmallSupport, kSmallSupport>>(
+        x, height_terms, function_terms, p);
+  } else {
+    FitPatchLeastSquares<Eigen::MatrixXd>(x, height_terms, function_terms, p);
   }
 }
 

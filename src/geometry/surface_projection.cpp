@@ -2,6 +2,7 @@
 #include "ehd_capsule/geometry/surface_projection.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -52,9 +53,20 @@ SurfaceProjector::SurfaceProjector(const TriangleMesh& mesh, double bucket)
   const Eigen::Matrix3Xd& x = mesh.vertices();
   origin_ = x.rowwise().minCoeff();
   const Eigen::Vector3d span = x.rowwise().maxCoeff() - origin_;
-  for (int a = 0; a < 3; ++a) extent_[a] = static_cast<int>(span(a) / bucket) + 1;
+  // The buckets are a dense array over the mesh's box; a bucket far below the mesh's size
+  // (more than 64 buckets a triangle) is widened until they fit (only the search's cost depends
+  // on it).
+  const double max_buckets = std::max(1 << 20, 64 * mesh.triangle_count());
+  while ((span(0) / bucket_ + 1) * (span(1) / bucket_ + 1) * (span(2) / bucket_ + 1) >
+         max_buckets) {
+    bucket_ *= 2.0;
+  }
+  for (int a = 0; a < 3; ++a) extent_[a] = static_cast<int>(span(a) / bucket_) + 1;
   centroid_.resize(3, mesh.triangle_count());
   radius_.resize(mesh.triangle_count());
+  // Each triangle's range of buckets (its bounding box), counted, then filled in triangle order.
+  std::vector<std::array<int, 6>> range(mesh.triangle_count());
+  bucket_start_.assign(static_cast<std::size_t>(extent_[0]) * extent_[1] * extent_[2] + 1, 0);
   for (int t = 0; t < mesh.triangle_count(); ++t) {
     const auto& tri = mesh.triangles()[t];
     // The bounding sphere about the centroid, its radius widened by a relative 1e-9 so that the
@@ -63,27 +75,31 @@ SurfaceProjector::SurfaceProjector(const TriangleMesh& mesh, double bucket)
     double radius = 0.0;
     for (int c = 0; c < 3; ++c) radius = std::max(radius, (x.col(tri[c]) - centre).norm());
     centroid_.col(t) = centre;
-    radius_[t] = radius * (1.0 + 1e-9) + 1e-12 * (centre.norm() + bucket);
+    radius_[t] = radius * (1.0 + 1e-9) + 1e-12 * (centre.norm() + bucket_);
     Eigen::Vector3d lo = x.col(tri[0]), hi = lo;
     for (int c = 1; c < 3; ++c) {
       lo = lo.cwiseMin(Eigen::Vector3d(x.col(tri[c])));
       hi = hi.cwiseMax(Eigen::Vector3d(x.col(tri[c])));
     }
-    int l[3], h[3];
     for (int a = 0; a < 3; ++a) {
-      l[a] = static_cast<int>(std::floor((lo(a) - origin_(a)) / bucket));
-      h[a] = static_cast<int>(std::floor((hi(a) - origin_(a)) / bucket));
+      range[t][a] = std::clamp(static_cast<int>(std::floor((lo(a) - origin_(a)) / bucket_)), 0,
+                               extent_[a] - 1);
+      range[t][3 + a] = std::clamp(static_cast<int>(std::floor((hi(a) - origin_(a)) / bucket_)), 0,
+                                   extent_[a] - 1);
     }
-    for (int i = l[0]; i <= h[0]; ++i)
-      for (int j = l[1]; j <= h[1]; ++j)
-        for (int k = l[2]; k <= h[2]; ++k) buckets_[Key(i, j, k)].push_back(t);
+    for (int i = range[t][0]; i <= range[t][3]; ++i)
+      for (int j = range[t][1]; j <= range[t][4]; ++j)
+        for (int k = range[t][2]; k <= range[t][5]; ++k) ++bucket_start_[Index(i, j, k) + 1];
   }
-}
-
-long SurfaceProjector::Key(int i, int j, int k) const {
-  // Buckets beyond the mesh's box exist only in queries: shift into a non-negative range.
-  const long s = 1 << 20;
-  return ((static_cast<long>(i) + s) * (2 * s) + (j + s)) * (2 * s) + (k + s);
+  for (std::size_t b = 1; b < bucket_start_.size(); ++b) bucket_start_[b] += bucket_start_[b - 1];
+  bucket_triangles_.resize(bucket_start_.back());
+  std::vector<int> fill(bucket_start_.begin(), bucket_start_.end() - 1);
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    for (int i = range[t][0]; i <= range[t][3]; ++i)
+      for (int j = range[t][1]; j <= range[t][4]; ++j)
+        for (int k = range[t][2]; k <= range[t][5]; ++k)
+          bucket_triangles_[fill[Index(i, j, k)]++] = t;
+  }
 }
 
 SurfacePoint SurfaceProjector::Closest(const Eigen::Vector3d& p) const {
@@ -107,13 +123,16 @@ SurfacePoint SurfaceProjector::Closest(const Eigen::Vector3d& p) const {
   }
   clearance = std::max(clearance, 0.0);
   for (int r = 0; r <= max_ring; ++r) {
-    for (int i = c[0] - r; i <= c[0] + r; ++i) {
-      for (int j = c[1] - r; j <= c[1] + r; ++j) {
-        for (int k = c[2] - r; k <= c[2] + r; ++k) {
-          if (std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])}) != r) continue;
-          const auto it = buckets_.find(Key(i, j, k));
-          if (it == buckets_.end()) continue;
-          for (int t : it->second) {
+    // The ring's buckets within the mesh's box (there are no others).
+    for (int i = std::max(0, c[0] - r); i <= std::min(extent_[0] - 1, c[0] + r); ++i) {
+      for (int j = std::max(0, c[1] - r); j <= std::min(extent_[1] - 1, c[1] + r); ++j) {
+        const bool on_ring_ij = std::max(std::abs(i - c[0]), std::abs(j - c[1])) == r;
+        for (int k = std::max(0, c[2] - r); k <= std::min(extent_[2] - 1, c[2] + r); ++k) {
+          // Inside the ring only the two k faces, unless (i, j) is on it.
+          if (!on_ring_ij && std::abs(k - c[2]) != r) continue;
+          const std::size_t b = Index(i, j, k);
+          for (int q = bucket_start_[b]; q < bucket_start_[b + 1]; ++q) {
+            const int t = bucket_triangles_[q];
             // No point of the triangle is nearer than its bounding sphere.
             if ((p - centroid_.col(t)).norm() - radius_[t] >= best.distance) continue;
             const auto& tri = mesh_.triangles()[t];

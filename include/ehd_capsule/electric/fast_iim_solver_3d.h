@@ -164,6 +164,10 @@ class FastIimSolver3D {
   // GMRES in the harmonic basis with the flux balance deflated (g: guess in, solution out).
   GmresResult SolveInHarmonicBasis(const TriangleMesh& surface, const InterfaceProblem3D& problem,
                                    int level, std::vector<double>& g);
+  // The nodes of vertex v's normal-derivative fit, |r| < fit_radius_h h (r = node - vertex), in
+  // (k, j, i) order: visit(node, r, |r|^2).
+  template <typename Visit>
+  void ForEachFitNode(const TriangleMesh& surface, int v, const Visit& visit) const;
   void SetUpBand(const TriangleMesh& surface);
   void SetUpFits(const TriangleMesh& surface);
   // Throws SolverError above max_fit_disagreement.

@@ -79,6 +79,7 @@ class LocalSurfaceFit {
   int vertex_count() const { return static_cast<int>(patches_.size()); }
 
  private:
+  static constexpr int kSmallSupport = 32;
   static void FitPatch(const TriangleMesh& mesh, const Eigen::Matrix3Xd& normal, int v, int rings,
                        int height_terms, int function_terms, std::vector<int>& mark,
                        SurfacePatch& p);

@@ -9,7 +9,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <unordered_map>
 #include <vector>
 
 #include "ehd_capsule/geometry/triangle_mesh.h"
@@ -34,14 +33,18 @@ class SurfaceProjector {
   SurfacePoint Closest(const Eigen::Vector3d& p) const;
 
  private:
-  long Key(int i, int j, int k) const;
+  std::size_t Index(int i, int j, int k) const {
+    return (static_cast<std::size_t>(i) * extent_[1] + j) * extent_[2] + k;
+  }
   TriangleMesh mesh_;
   double bucket_;
   Eigen::Vector3d origin_;
   int extent_[3];
   Eigen::Matrix3Xd centroid_;   // of each triangle
   std::vector<double> radius_;  // of each triangle's bounding sphere about its centroid
-  std::unordered_map<long, std::vector<int>> buckets_;
+  // Triangles touching each bucket (by bounding box), in triangle order: bucket b's are
+  // bucket_triangles_[bucket_start_[b] .. bucket_start_[b + 1]).
+  std::vector<int> bucket_start_, bucket_triangles_;
 };
 
 }  // namespace ehd
