@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace ehd {
@@ -214,6 +215,59 @@ double EnclosedVolume(const TriangleMesh& mesh) {
     volume += Column(x, t[0]).dot(Column(x, t[1]).cross(Column(x, t[2])));
   }
   return volume / 6.0;
+}
+
+double EnclosedVolume(const Eigen::Matrix3Xd& x,
+                      const std::vector<TriangleMesh::Triangle>& triangles) {
+  double volume = 0.0;
+  for (const auto& t : triangles)
+    volume += Column(x, t[0]).dot(Column(x, t[1]).cross(Column(x, t[2])));
+  return volume / 6.0;
+}
+
+double RestoreEnclosedVolume(const std::vector<TriangleMesh::Triangle>& triangles, double volume,
+                             Eigen::Matrix3Xd& x) {
+  if (!(volume > 0.0)) {
+    throw std::invalid_argument("RestoreEnclosedVolume: target volume must be > 0");
+  }
+  // dV/dx_a = (x_b x x_c) / 6 summed over a's triangles (a, b, c), at the starting positions.
+  Eigen::Matrix3Xd direction = Eigen::Matrix3Xd::Zero(3, x.cols());
+  for (const auto& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      direction.col(t[k]) += Column(x, t[(k + 1) % 3]).cross(Column(x, t[(k + 2) % 3])) / 6.0;
+    }
+  }
+  for (long i = 0; i < x.cols(); ++i) {
+    const double norm = direction.col(i).norm();
+    if (!(norm > 0.0)) {
+      throw std::invalid_argument("RestoreEnclosedVolume: vertex " + std::to_string(i) +
+                                  " has no volume gradient (degenerate surface)");
+    }
+    direction.col(i) /= norm;
+  }
+  const Eigen::Matrix3Xd start = x;
+  double delta = 0.0;
+  for (int it = 0; it < 8; ++it) {
+    x = start + delta * direction;
+    const double residual = EnclosedVolume(x, triangles) - volume;
+    if (std::abs(residual) <= 1e-14 * volume) break;
+    // dV/d delta = sum_i dV/dx_i . direction_i at the current positions.
+    double slope = 0.0;
+    for (const auto& t : triangles) {
+      for (int k = 0; k < 3; ++k) {
+        slope += direction.col(t[k]).dot(
+            Column(x, t[(k + 1) % 3]).cross(Column(x, t[(k + 2) % 3])) / 6.0);
+      }
+    }
+    if (!(slope > 0.0)) {
+      throw std::invalid_argument(
+          "RestoreEnclosedVolume: the volume does not grow along the vertex normals (a surface "
+          "turned inside out)");
+    }
+    delta -= residual / slope;
+  }
+  x = start + delta * direction;
+  return delta;
 }
 
 Eigen::Vector3d Centroid(const TriangleMesh& mesh) {

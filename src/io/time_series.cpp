@@ -10,7 +10,7 @@ std::string TimeSeriesHeader(int dimension) {
   return std::string(
              "step,t,dxy,inclination,area,tt_phase,area_drift,ca,ca_e,fe_x,fe_y,"
              "gmres_iterations,max_mach,surface_drift") +
-         (dimension == 3 ? ",fe_z,d_field,surface_flow" : "");
+         (dimension == 3 ? ",fe_z,d_field,surface_flow,volume_corrected" : "");
 }
 
 TimeSeriesCsv::TimeSeriesCsv(const std::string& path, const Simulation& sim, bool append)
@@ -37,8 +37,8 @@ void TimeSeriesCsv::Write(const Simulation& sim) {
                 s.gmres_iterations, s.max_mach, s.surface_drift);
   out_ << line;
   if (s.dimension == 3) {
-    std::snprintf(line, sizeof line, ",%.6g,%.10g,%.6g", s.electric_force_total.z() / t_scale,
-                  s.d_field, s.surface_flow);
+    std::snprintf(line, sizeof line, ",%.6g,%.10g,%.6g,%.6g", s.electric_force_total.z() / t_scale,
+                  s.d_field, s.surface_flow, s.volume_corrected);
     out_ << line;
   }
   out_ << '\n';

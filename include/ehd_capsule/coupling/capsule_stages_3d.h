@@ -44,8 +44,10 @@ struct MembraneSurface3D {
   double field = 0;                                    // |E_inf| in effect (lattice units)
   double initial_volume = 0;
   double initial_area = 0;  // surface area of the initial shape
-  int tracked_vertex = 0;   // the material vertex whose angle is the tank-treading phase
-  double shear_rate = 0;    // k in effect
+  // The volume restored by numerics.volume_correction_every so far / initial_volume.
+  double volume_corrected = 0;
+  int tracked_vertex = 0;  // the material vertex whose angle is the tank-treading phase
+  double shear_rate = 0;   // k in effect
   SimulationState* state = nullptr;
 
   void ResetTo(const Eigen::Matrix3Xd& positions);

@@ -27,6 +27,10 @@ struct SimulationState {
   // 3D only: amplitude of the meridional surface flow about the field axis z, in a per time unit
   // (MeasureMeridionalFlow; > 0 from the poles to the equator).
   double surface_flow = 0;
+  // 3D only: the enclosed volume the volume correction has restored in total, relative to the
+  // initial volume (numerics.volume_correction_every; 0 without it): the immersed boundary's
+  // leak is area_drift - volume_corrected.
+  double volume_corrected = 0;
   double tt_phase = 0;  // unwrapped angle of material point 0 about the centroid (rad)
   double ca = 0, ca_e = 0;
   int gmres_iterations = 0;

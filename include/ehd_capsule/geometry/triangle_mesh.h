@@ -91,6 +91,16 @@ Eigen::Vector3d AreaWeightedMean(const TriangleMesh& mesh, const std::vector<dou
                                  const Eigen::Matrix3Xd& field);
 double EnclosedVolume(const TriangleMesh& mesh);     // (1/6) sum x_a . (x_b x x_c)
 Eigen::Vector3d Centroid(const TriangleMesh& mesh);  // of the enclosed volume
+// The volume (1/6) sum x_a . (x_b x x_c) of the closed surface with vertices x and `triangles`.
+double EnclosedVolume(const Eigen::Matrix3Xd& x,
+                      const std::vector<TriangleMesh::Triangle>& triangles);
+// Moves every vertex of x by one common distance delta along the unit direction of its volume
+// gradient dV/dx_i (the area-weighted vertex normal; a uniform inflation or deflation of the
+// surface, its shape kept to first order) so that the enclosed volume becomes `volume`: Newton
+// on delta (V is a cubic in delta), to a relative 1e-14 or 8 iterations. Returns delta. Throws
+// std::invalid_argument for volume <= 0 or a surface with a vanishing volume gradient.
+double RestoreEnclosedVolume(const std::vector<TriangleMesh::Triangle>& triangles, double volume,
+                             Eigen::Matrix3Xd& x);
 
 // Discrete differential geometry (Meyer, Desbrun, Schroeder & Barr, "Discrete differential-
 // geometry operators for triangulated 2-manifolds", 2003):

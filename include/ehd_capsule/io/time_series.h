@@ -26,8 +26,9 @@ class TimeSeriesCsv {
 };
 
 // The header line (no newline). 3D simulations add fe_z (the electric force's z component),
-// d_field (the deformation along the field axis z) and surface_flow (the meridional surface
-// flow about z, a per time unit, > 0 from the poles to the equator).
+// d_field (the deformation along the field axis z), surface_flow (the meridional surface
+// flow about z, a per time unit, > 0 from the poles to the equator) and volume_corrected (the
+// relative volume numerics.volume_correction_every has restored in total; 0 without it).
 std::string TimeSeriesHeader(int dimension = 2);
 
 }  // namespace ehd

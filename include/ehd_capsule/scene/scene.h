@@ -88,6 +88,10 @@ struct SceneNumerics {
   int marker_filter_every = 100;
   // 3D: the order p of the mesh-scale filter (ib/mesh_scale_filter.h).
   int mesh_filter_order = 8;
+  // 3D: every n steps the vertices are moved by one common distance along their normals so that
+  // the enclosed volume is the initial one again (geometry/triangle_mesh.h,
+  // RestoreEnclosedVolume): the immersed boundary leaks slowly; 0 = off.
+  int volume_correction_every = 0;
   double max_mach = 0.1;  // watchdog: max |u| / c_s
   int threads = 0;        // LBM OpenMP threads (0: OpenMP default)
 };
