@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "poisson_axis.h"
@@ -41,9 +43,32 @@ void ExportWisdom() {
   std::error_code error;
   const std::filesystem::path target(path);
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path(), error);
+  // Nothing new planned (the wisdom is the file's, e.g. a solver of a size planned before):
+  // leave the file alone.
+  char* wisdom = fftw_export_wisdom_to_string();
+  if (wisdom == nullptr) return;
+  const std::string text(wisdom);
+  fftw_free(wisdom);
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (in) {
+      const std::string current((std::istreambuf_iterator<char>(in)),
+                                std::istreambuf_iterator<char>());
+      if (current == text) return;
+    }
+  }
   // Write beside it and rename, so a concurrent reader never sees half a file.
   const std::string temporary = path + "." + std::to_string(::getpid()) + ".tmp";
-  if (fftw_export_wisdom_to_filename(temporary.c_str()) == 0) return;  // not writable: no cache
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) return;  // not writable: no cache
+    out << text;
+    if (!out.flush()) {
+      out.close();
+      std::filesystem::remove(temporary, error);
+      return;
+    }
+  }
   std::filesystem::rename(temporary, target, error);
   if (error) std::filesystem::remove(temporary, error);
 }

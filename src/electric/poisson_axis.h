@@ -32,7 +32,7 @@ inline std::mutex& PlannerMutex() {
 // write wins). Call both with PlannerMutex held, around the planning.
 std::string WisdomPath();  // empty: no file
 void ImportWisdom();
-void ExportWisdom();
+void ExportWisdom();  // rewrites the file only when it lacks some of this process's wisdom
 
 struct AxisTransform {
   fftw_r2r_kind forward;

@@ -160,19 +160,36 @@ TEST(Simulation3D, CentredCapsuleOnAnOddGridIsNotRefusedAsFolded) {
 }
 
 TEST(Simulation3D, CheckpointRestartAndResetAreBitForBit) {
+  // With the volume correction too (every 4 steps: on both sides of the checkpoint), whose
+  // running total is part of the checkpoint.
+  for (const char* correction : {"0", "4"}) {
+    const Scene scene =
+        ParseScene(kTinySphere, {"numerics.integrator=adams_bashforth2", "E_b=0.05",
+                                 std::string("numerics.volume_correction_every=") + correction});
+    const std::string path = ::testing::TempDir() + "/ehd_checkpoint_3d_test.bin";
+    Simulation a(scene);
+    for (int i = 0; i < 6; ++i) a.Step();
+    a.Save(path);
+    for (int i = 0; i < 5; ++i) a.Step();
+    Simulation b(scene);
+    b.Restore(path);
+    EXPECT_EQ(b.state().step, 6);
+    for (int i = 0; i < 5; ++i) b.Step();
+    EXPECT_TRUE((a.state().markers.array() == b.state().markers.array()).all());
+    EXPECT_EQ(a.ux(), b.ux());
+    EXPECT_EQ(a.state().tt_phase, b.state().tt_phase);
+    EXPECT_EQ(a.state().volume_corrected, b.state().volume_corrected);
+    if (std::string(correction) != "0") {
+      EXPECT_NE(a.state().volume_corrected, 0.0);
+    }
+  }
   const Scene scene = ParseScene(kTinySphere, {"numerics.integrator=adams_bashforth2", "E_b=0.05"});
   const std::string path = ::testing::TempDir() + "/ehd_checkpoint_3d_test.bin";
   Simulation a(scene);
   for (int i = 0; i < 6; ++i) a.Step();
   a.Save(path);
-  for (int i = 0; i < 5; ++i) a.Step();
   Simulation b(scene);
   b.Restore(path);
-  EXPECT_EQ(b.state().step, 6);
-  for (int i = 0; i < 5; ++i) b.Step();
-  EXPECT_TRUE((a.state().markers.array() == b.state().markers.array()).all());
-  EXPECT_EQ(a.ux(), b.ux());
-  EXPECT_EQ(a.state().tt_phase, b.state().tt_phase);
   // A 2D checkpoint is refused by a 3D simulation and the other way round.
   Simulation plain2d(ParseScene(R"(
 name: tiny_capsule

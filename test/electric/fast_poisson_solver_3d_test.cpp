@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <random>
 #include <string>
 
@@ -160,7 +162,8 @@ TEST(FastPoissonSolver3D, RejectsUnpairedPeriodicFacesAndWrongData) {
 }
 
 // The plans go to the wisdom file (src/electric/poisson_axis.h), which FFTW reads back, so a
-// later process plans the same transforms the same way; EHD_FFTW_WISDOM=off writes none. (That
+// later process plans the same transforms the same way, and is rewritten only when a new size
+// was planned; EHD_FFTW_WISDOM=off writes none. (That
 // two processes then repeat a field run bit for bit is checked by hand in
 // docs/validation_3d_ehd.md: one process cannot show it.)
 TEST(FastPoissonSolver3D, PlansAreKeptInTheWisdomFile) {
@@ -175,6 +178,14 @@ TEST(FastPoissonSolver3D, PlansAreKeptInTheWisdomFile) {
   ASSERT_NE(file, nullptr) << path;
   std::fclose(file);
   EXPECT_EQ(fftw_import_wisdom_from_filename(path.c_str()), 1);
+  // A solver of a size planned before adds nothing: the file is not rewritten.
+  const auto old_time = std::filesystem::file_time_type::clock::now() - std::chrono::hours(1);
+  std::filesystem::last_write_time(path, old_time);
+  { FastPoissonSolver3D solver(g, PoissonBoundaries3D{}); }
+  EXPECT_EQ(std::filesystem::last_write_time(path), old_time);
+  // A new size is added to it.
+  { FastPoissonSolver3D solver(Grid3D{7, 5, 4, 0.25, 0, 0, 0}, PoissonBoundaries3D{}); }
+  EXPECT_NE(std::filesystem::last_write_time(path), old_time);
   std::remove(path.c_str());
   setenv("EHD_FFTW_WISDOM", "off", 1);
   { FastPoissonSolver3D solver(g, PoissonBoundaries3D{}); }
