@@ -209,12 +209,7 @@ double SurfaceArea(const TriangleMesh& mesh) {
 }
 
 double EnclosedVolume(const TriangleMesh& mesh) {
-  const Eigen::Matrix3Xd& x = mesh.vertices();
-  double volume = 0.0;
-  for (const auto& t : mesh.triangles()) {
-    volume += Column(x, t[0]).dot(Column(x, t[1]).cross(Column(x, t[2])));
-  }
-  return volume / 6.0;
+  return EnclosedVolume(mesh.vertices(), mesh.triangles());
 }
 
 double EnclosedVolume(const Eigen::Matrix3Xd& x,
@@ -225,18 +220,29 @@ double EnclosedVolume(const Eigen::Matrix3Xd& x,
   return volume / 6.0;
 }
 
+namespace {
+
+// dV/dx_a = (x_b x x_c) / 6 summed over a's triangles (a, b, c).
+Eigen::Matrix3Xd VolumeGradient(const Eigen::Matrix3Xd& x,
+                                const std::vector<TriangleMesh::Triangle>& triangles) {
+  Eigen::Matrix3Xd gradient = Eigen::Matrix3Xd::Zero(3, x.cols());
+  for (const auto& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      gradient.col(t[k]) += Column(x, t[(k + 1) % 3]).cross(Column(x, t[(k + 2) % 3])) / 6.0;
+    }
+  }
+  return gradient;
+}
+
+}  // namespace
+
 double RestoreEnclosedVolume(const std::vector<TriangleMesh::Triangle>& triangles, double volume,
                              Eigen::Matrix3Xd& x) {
   if (!(volume > 0.0)) {
     throw std::invalid_argument("RestoreEnclosedVolume: target volume must be > 0");
   }
-  // dV/dx_a = (x_b x x_c) / 6 summed over a's triangles (a, b, c), at the starting positions.
-  Eigen::Matrix3Xd direction = Eigen::Matrix3Xd::Zero(3, x.cols());
-  for (const auto& t : triangles) {
-    for (int k = 0; k < 3; ++k) {
-      direction.col(t[k]) += Column(x, t[(k + 1) % 3]).cross(Column(x, t[(k + 2) % 3])) / 6.0;
-    }
-  }
+  // The unit directions of dV/dx_i at the starting positions.
+  Eigen::Matrix3Xd direction = VolumeGradient(x, triangles);
   for (long i = 0; i < x.cols(); ++i) {
     const double norm = direction.col(i).norm();
     if (!(norm > 0.0)) {
@@ -252,13 +258,7 @@ double RestoreEnclosedVolume(const std::vector<TriangleMesh::Triangle>& triangle
     const double residual = EnclosedVolume(x, triangles) - volume;
     if (std::abs(residual) <= 1e-14 * volume) break;
     // dV/d delta = sum_i dV/dx_i . direction_i at the current positions.
-    double slope = 0.0;
-    for (const auto& t : triangles) {
-      for (int k = 0; k < 3; ++k) {
-        slope += direction.col(t[k]).dot(
-            Column(x, t[(k + 1) % 3]).cross(Column(x, t[(k + 2) % 3])) / 6.0);
-      }
-    }
+    const double slope = VolumeGradient(x, triangles).cwiseProduct(direction).sum();
     if (!(slope > 0.0)) {
       throw std::invalid_argument(
           "RestoreEnclosedVolume: the volume does not grow along the vertex normals (a surface "
