@@ -20,6 +20,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -77,19 +78,37 @@ inline void StoreFence() {
 // an even step, d_q = g_opp(q) shifted in an odd one): no restrict on them. Each iteration reads
 // all its populations before it writes any and no iteration touches another's locations, which
 // is what `omp simd` asserts, so the loop still vectorises.
-template <ForcingScheme kForcing, bool kVariableViscosity>
+template <ForcingScheme kForcing, bool kVariableViscosity, bool kWallTerms = false>
 void CollideRow(int i_begin, int i_end, const double* const* g, double* const* d,
                 const double* __restrict fx, const double* __restrict fy,
                 const double* __restrict s_nu_field, double s_nu_uniform, MrtRates rates,
-                double* __restrict rho, double* __restrict ux, double* __restrict uy) {
+                double* __restrict rho, double* __restrict ux, double* __restrict uy,
+                const double* wall_coefficient = nullptr, double wall_u = 0.0) {
   const double *g0 = g[0], *g1 = g[1], *g2 = g[2], *g3 = g[3], *g4 = g[4];
   const double *g5 = g[5], *g6 = g[6], *g7 = g[7], *g8 = g[8];
   double *d0 = d[0], *d1 = d[1], *d2 = d[2], *d3 = d[3], *d4 = d[4];
   double *d5 = d[5], *d6 = d[6], *d7 = d[7], *d8 = d[8];
+  // A wall row's links from beyond the wall: the stored f*_opp plus the moving wall's term as
+  // MovingWallLink forms it (coefficient 6 w_q c_qx; 0 for the other links: fma(0, u, x) = x).
+  double c[9] = {};
+  if constexpr (kWallTerms) {
+    for (int q = 0; q < 9; ++q) c[q] = wall_coefficient[q];
+  }
 #pragma omp simd
   for (int i = i_begin; i < i_end; ++i) {
     double f0 = g0[i], f1 = g1[i], f2 = g2[i], f3 = g3[i], f4 = g4[i];
     double f5 = g5[i], f6 = g6[i], f7 = g7[i], f8 = g8[i];
+    if constexpr (kWallTerms) {
+      f0 = std::fma(c[0], wall_u, f0);
+      f1 = std::fma(c[1], wall_u, f1);
+      f2 = std::fma(c[2], wall_u, f2);
+      f3 = std::fma(c[3], wall_u, f3);
+      f4 = std::fma(c[4], wall_u, f4);
+      f5 = std::fma(c[5], wall_u, f5);
+      f6 = std::fma(c[6], wall_u, f6);
+      f7 = std::fma(c[7], wall_u, f7);
+      f8 = std::fma(c[8], wall_u, f8);
+    }
     const double s_nu = kVariableViscosity ? s_nu_field[i] : s_nu_uniform;
     double r, u, v;
     MrtCollideNode<kForcing>(f0, f1, f2, f3, f4, f5, f6, f7, f8, fx[i], fy[i], s_nu, rates, r, u,
@@ -130,9 +149,11 @@ void InteriorRow(int i_begin, int i_end, const double* __restrict s0, const doub
 
 // The half-way bounce-back population of a y wall moving at u_w along x: f*_opp(q) + 6 w_q c_qx
 // u_w. Both kernels call it, so they round it the same way.
+inline double MovingWallCoefficient(int q) { return 6.0 * d2q9::kWeight[q] * d2q9::kCx[q]; }
+// One explicit fused multiply-add (what the compiler contracted the plain expression to before),
+// so every path rounds it the same way.
 inline double MovingWallLink(double reflected, int q, double wall_u) {
-  using namespace d2q9;
-  return reflected + 6.0 * kWeight[q] * kCx[q] * wall_u;
+  return std::fma(MovingWallCoefficient(q), wall_u, reflected);
 }
 
 // General node: gathers with wrap-around and bounce-back, then collides.
@@ -283,40 +304,104 @@ void InPlaceNode(const KernelArgs& a, int i, int j) {
   }
 }
 
+// v mod period for v in [-period, 2 period): the neighbour coordinates of a link.
+inline int WrapOnce(int v, int period) {
+  return v < 0 ? v + period : (v >= period ? v - period : v);
+}
+
+// Even steps collide every row as one stretch (no streaming; a resting side wall adds nothing,
+// and the y wall rows add the moving wall's term to the links from beyond it). Odd steps stream
+// each row through its source and target rows; the first and last node of a periodic row go
+// through the same vector loop with their x offsets wrapped, so only side-wall columns and
+// degenerate grids take the node-by-node path.
 template <ForcingScheme kForcing, bool kVariableViscosity, bool kOdd>
 void InPlaceRows(const KernelArgs& a, int threads) {
   using namespace d2q9;
   const int nx = a.nx, ny = a.ny;
   const std::size_t n = a.n;
   double* const f = a.dst;  // the single array (src == dst)
+  const bool general = nx < 3 || (!a.periodic_y && ny < 2);
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads != 1)
   for (int j = 0; j < ny; ++j) {
-    const bool wall_row = !a.periodic_y && (j == 0 || j == ny - 1);
-    if (wall_row || nx < 3) {
+    if (general) {
       for (int i = 0; i < nx; ++i) InPlaceNode<kForcing, kVariableViscosity, kOdd>(a, i, j);
       continue;
     }
-    InPlaceNode<kForcing, kVariableViscosity, kOdd>(a, 0, j);
+    const bool wall_row = !a.periodic_y && (j == 0 || j == ny - 1);
     const std::size_t row = static_cast<std::size_t>(j) * nx;
-    // Interior i = 1..nx-2: all nine links stay inside (y wraps by row when periodic).
+    double coefficient[kQ];
+    const int beyond = j == 0 ? 1 : -1;  // c_y of the links whose source lies beyond the wall
+    for (int q = 0; q < kQ; ++q) {
+      coefficient[q] = wall_row && kCy[q] == beyond ? MovingWallCoefficient(q) : 0.0;
+    }
+    const double wall_u = j == 0 ? a.wall_u_bottom : a.wall_u_top;
+    // Nodes first .. last - 1 of the row, node i reading gather[q][i], writing scatter[q][i].
+    auto stretch = [&](const double* const* gather, double* const* scatter, int first, int last) {
+      const double* nu = kVariableViscosity ? a.s_nu_field + row : nullptr;
+      if (wall_row) {
+        CollideRow<kForcing, kVariableViscosity, true>(
+            first, last, gather, scatter, a.fx + row, a.fy + row, nu, a.s_nu_uniform, a.rates,
+            a.rho + row, a.ux + row, a.uy + row, coefficient, wall_u);
+      } else {
+        CollideRow<kForcing, kVariableViscosity>(first, last, gather, scatter, a.fx + row,
+                                                 a.fy + row, nu, a.s_nu_uniform, a.rates,
+                                                 a.rho + row, a.ux + row, a.uy + row);
+      }
+    };
     const double* gather[kQ];
     double* scatter[kQ];
-    for (int q = 0; q < kQ; ++q) {
-      if (kOdd) {
-        const std::size_t from = static_cast<std::size_t>((j - kCy[q] + ny) % ny) * nx;
-        const std::size_t to = static_cast<std::size_t>((j + kCy[q] + ny) % ny) * nx;
-        gather[q] = f + kOpposite[q] * n + from - kCx[q];
-        scatter[q] = f + q * n + to + kCx[q];
-      } else {
+    if constexpr (!kOdd) {
+      for (int q = 0; q < kQ; ++q) {
         gather[q] = f + q * n + row;
         scatter[q] = f + kOpposite[q] * n + row;
       }
+      stretch(gather, scatter, 0, nx);
+      continue;
     }
-    CollideRow<kForcing, kVariableViscosity>(1, nx - 1, gather, scatter, a.fx + row, a.fy + row,
-                                             kVariableViscosity ? a.s_nu_field + row : nullptr,
-                                             a.s_nu_uniform, a.rates, a.rho + row, a.ux + row,
-                                             a.uy + row);
-    InPlaceNode<kForcing, kVariableViscosity, kOdd>(a, nx - 1, j);
+    // Odd step: the source and target row of each link (y wrapped once per row) and its x
+    // offset; a link from beyond a y wall reads its own node's slot q, one leaving through it
+    // writes its own node's slot opp(q).
+    const double* source_row[kQ];
+    double* target_row[kQ];
+    int gather_dx[kQ], scatter_dx[kQ];
+    for (int q = 0; q < kQ; ++q) {
+      const int sj = j - kCy[q], dj = j + kCy[q];
+      if (!a.periodic_y && (sj < 0 || sj >= ny)) {
+        source_row[q] = f + q * n + row;
+        gather_dx[q] = 0;
+      } else {
+        source_row[q] = f + kOpposite[q] * n + static_cast<std::size_t>(WrapOnce(sj, ny)) * nx;
+        gather_dx[q] = -kCx[q];
+      }
+      if (!a.periodic_y && (dj < 0 || dj >= ny)) {
+        target_row[q] = f + kOpposite[q] * n + row;
+        scatter_dx[q] = 0;
+      } else {
+        target_row[q] = f + q * n + static_cast<std::size_t>(WrapOnce(dj, ny)) * nx;
+        scatter_dx[q] = kCx[q];
+      }
+    }
+    // `edge`: node `first` alone, its x offsets wrapped (the interior never wraps).
+    auto odd_stretch = [&](int first, int last, bool edge) {
+      for (int q = 0; q < kQ; ++q) {
+        gather[q] =
+            source_row[q] + (edge ? WrapOnce(first + gather_dx[q], nx) - first : gather_dx[q]);
+        scatter[q] =
+            target_row[q] + (edge ? WrapOnce(first + scatter_dx[q], nx) - first : scatter_dx[q]);
+      }
+      stretch(gather, scatter, first, last);
+    };
+    if (a.side_walls) {
+      InPlaceNode<kForcing, kVariableViscosity, kOdd>(a, 0, j);
+    } else {
+      odd_stretch(0, 1, true);
+    }
+    odd_stretch(1, nx - 1, false);
+    if (a.side_walls) {
+      InPlaceNode<kForcing, kVariableViscosity, kOdd>(a, nx - 1, j);
+    } else {
+      odd_stretch(nx - 1, nx, true);
+    }
   }
 }
 
