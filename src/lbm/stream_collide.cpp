@@ -304,11 +304,6 @@ void InPlaceNode(const KernelArgs& a, int i, int j) {
   }
 }
 
-// v mod period for v in [-period, 2 period): the neighbour coordinates of a link.
-inline int WrapOnce(int v, int period) {
-  return v < 0 ? v + period : (v >= period ? v - period : v);
-}
-
 // Even steps collide every row as one stretch (no streaming; a resting side wall adds nothing,
 // and the y wall rows add the moving wall's term to the links from beyond it). Odd steps stream
 // each row through its source and target rows; the first and last node of a periodic row go
@@ -370,24 +365,26 @@ void InPlaceRows(const KernelArgs& a, int threads) {
         source_row[q] = f + q * n + row;
         gather_dx[q] = 0;
       } else {
-        source_row[q] = f + kOpposite[q] * n + static_cast<std::size_t>(WrapOnce(sj, ny)) * nx;
+        source_row[q] =
+            f + kOpposite[q] * n + static_cast<std::size_t>(lbm_kernels::WrapOnce(sj, ny)) * nx;
         gather_dx[q] = -kCx[q];
       }
       if (!a.periodic_y && (dj < 0 || dj >= ny)) {
         target_row[q] = f + kOpposite[q] * n + row;
         scatter_dx[q] = 0;
       } else {
-        target_row[q] = f + q * n + static_cast<std::size_t>(WrapOnce(dj, ny)) * nx;
+        target_row[q] = f + q * n + static_cast<std::size_t>(lbm_kernels::WrapOnce(dj, ny)) * nx;
         scatter_dx[q] = kCx[q];
       }
     }
     // `edge`: node `first` alone, its x offsets wrapped (the interior never wraps).
     auto odd_stretch = [&](int first, int last, bool edge) {
       for (int q = 0; q < kQ; ++q) {
-        gather[q] =
-            source_row[q] + (edge ? WrapOnce(first + gather_dx[q], nx) - first : gather_dx[q]);
+        gather[q] = source_row[q] +
+                    (edge ? lbm_kernels::WrapOnce(first + gather_dx[q], nx) - first : gather_dx[q]);
         scatter[q] =
-            target_row[q] + (edge ? WrapOnce(first + scatter_dx[q], nx) - first : scatter_dx[q]);
+            target_row[q] +
+            (edge ? lbm_kernels::WrapOnce(first + scatter_dx[q], nx) - first : scatter_dx[q]);
       }
       stretch(gather, scatter, first, last);
     };

@@ -9,6 +9,11 @@
 
 namespace ehd::lbm_kernels {
 
+// v mod period for v in [-period, 2 period): the neighbour coordinates of a link (both kernels).
+inline int WrapOnce(int v, int period) {
+  return v < 0 ? v + period : (v >= period ? v - period : v);
+}
+
 struct StreamCollideArgs {
   const double* src = nullptr;
   double* dst = nullptr;

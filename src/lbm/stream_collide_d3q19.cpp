@@ -215,11 +215,6 @@ __attribute__((always_inline)) inline void CollideD3Q19(double* f, double fx, do
   uz_out = uz;
 }
 
-// v mod period for v in [-period, 2 period): the neighbour coordinates of a link.
-inline int WrapOnce(int v, int period) {
-  return v < 0 ? v + period : (v >= period ? v - period : v);
-}
-
 // The half-way bounce-back population of a wall moving at u_w along x: f*_opp(q) + 6 w_q c_qx
 // u_w, as one explicit fused multiply-add so both kernels round it the same way.
 inline double MovingWallCoefficient(int q) { return 6.0 * L::kWeight[q] * L::kC[q][0]; }
@@ -519,14 +514,17 @@ void InPlaceRows(const lbm_kernels::StreamCollideArgs& a) {
         gather_dx[q] = 0;
       } else {
         source_row[q] =
-            f + L::kOpposite[q] * n + index(0, WrapOnce(sj, ny), WrapOnce(k - L::kC[q][2], nz));
+            f + L::kOpposite[q] * n +
+            index(0, lbm_kernels::WrapOnce(sj, ny), lbm_kernels::WrapOnce(k - L::kC[q][2], nz));
         gather_dx[q] = -L::kC[q][0];
       }
       if (!a.periodic_y && (dj < 0 || dj >= ny)) {
         target_row[q] = f + L::kOpposite[q] * n + row;
         scatter_dx[q] = 0;
       } else {
-        target_row[q] = f + q * n + index(0, WrapOnce(dj, ny), WrapOnce(k + L::kC[q][2], nz));
+        target_row[q] =
+            f + q * n +
+            index(0, lbm_kernels::WrapOnce(dj, ny), lbm_kernels::WrapOnce(k + L::kC[q][2], nz));
         scatter_dx[q] = L::kC[q][0];
       }
     }
@@ -537,8 +535,10 @@ void InPlaceRows(const lbm_kernels::StreamCollideArgs& a) {
       const double* gather[kQ];
       double* scatter[kQ];
       for (int q = 0; q < kQ; ++q) {
-        const int from = edge ? WrapOnce(first + gather_dx[q], nx) - first : gather_dx[q];
-        const int to = edge ? WrapOnce(first + scatter_dx[q], nx) - first : scatter_dx[q];
+        const int from =
+            edge ? lbm_kernels::WrapOnce(first + gather_dx[q], nx) - first : gather_dx[q];
+        const int to =
+            edge ? lbm_kernels::WrapOnce(first + scatter_dx[q], nx) - first : scatter_dx[q];
         gather[q] = source_row[q] + from;
         scatter[q] = target_row[q] + to;
       }
