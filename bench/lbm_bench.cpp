@@ -15,7 +15,10 @@
 //
 // usage: lbm_bench [--lattice d2q9|d3q19] [--sizes 256,321,512,1024,1281] [--threads 1,2]
 //                  [--seconds 0.5] [--repeats 3] [--forcing split|guo] [--viscosity-field]
-//                  [--stores auto|cached|streaming] [--pattern auto|two|inplace]
+//                  [--stores auto|cached|streaming] [--pattern auto|two|inplace|compare]
+// --pattern compare times the A/B and the in-place kernel alternately in one process (--repeats
+// rounds) and prints both kernels' best and median MLUPS and the min / median / max of the
+// per-round ratio in place / A/B.
 #include <omp.h>
 
 #include <algorithm>
@@ -75,12 +78,10 @@ struct BenchOptions {
   ehd::StreamingPattern pattern = ehd::StreamingPattern::kAuto;
 };
 
-// Best wall-clock MLUPS and CPU-time MLUPS of `lb` over o.repeats runs of about o.seconds.
-// The kernel's footprint in doubles per node: the populations (one or two arrays), the force,
-// rho, u and the viscosity field.
+// The state every measurement starts from: a shear profile, a small force, optionally a
+// viscosity field (a third of the nodes at another viscosity).
 template <class Lattice>
-void Measure(Lattice& lb, int n, int threads, double bytes_per_update, double doubles_per_node,
-             const BenchOptions& o) {
+void Prepare(Lattice& lb, int n, const BenchOptions& o) {
   lb.InitializeShear(1e-3 / n);
   for (std::size_t k = 0; k < lb.force_x().size(); ++k) lb.force_x()[k] = 1e-8 * (k % 7);
   if (o.viscosity_field) {
@@ -88,30 +89,52 @@ void Measure(Lattice& lb, int n, int threads, double bytes_per_update, double do
     for (std::size_t k = 0; k < nu.size() / 3; ++k) nu[k] = 0.5;
     lb.SetViscosityField(nu);
   }
-  // Calibrate the step count to about `seconds`.
+}
+
+// A step count (even, so both parities of the in-place pattern are timed alike) that takes
+// about `seconds`.
+template <class Lattice>
+int CalibrateSteps(Lattice& lb, double seconds) {
   int steps = 2;
   for (;;) {
     const auto t0 = Clock::now();
     for (int s = 0; s < steps; ++s) lb.Step();
     const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
-    if (dt > 0.2 * o.seconds) {
-      steps = std::max(steps, static_cast<int>(steps * o.seconds / dt));
-      break;
-    }
+    if (dt > 0.2 * seconds) return std::max(steps, 2 * static_cast<int>(steps * seconds / dt / 2));
     steps *= 2;
   }
-  // Wall-clock MLUPS, and MLUPS from the process CPU time per thread: on a shared machine the
-  // latter does not count time the threads spent descheduled.
+}
+
+struct Timing {
+  double mlups;      // wall clock
+  double cpu_mlups;  // from the process CPU time per thread: on a shared machine it does not
+                     // count time the threads spent descheduled
+};
+
+template <class Lattice>
+Timing TimeSteps(Lattice& lb, int steps, int threads) {
+  const auto t0 = Clock::now();
+  const std::clock_t c0 = std::clock();
+  for (int s = 0; s < steps; ++s) lb.Step();
+  const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC / threads;
+  const double updates = static_cast<double>(lb.nodes()) * steps;
+  return {updates / dt * 1e-6, updates / cpu * 1e-6};
+}
+
+// Best wall-clock MLUPS and CPU-time MLUPS of `lb` over o.repeats runs of about o.seconds.
+// The kernel's footprint in doubles per node: the populations (one or two arrays), the force,
+// rho, u and the viscosity field.
+template <class Lattice>
+void Measure(Lattice& lb, int n, int threads, double bytes_per_update, double doubles_per_node,
+             const BenchOptions& o) {
+  Prepare(lb, n, o);
+  const int steps = CalibrateSteps(lb, o.seconds);
   double best = 0, best_cpu = 0;
   for (int rep = 0; rep < o.repeats; ++rep) {
-    const auto t0 = Clock::now();
-    const std::clock_t c0 = std::clock();
-    for (int s = 0; s < steps; ++s) lb.Step();
-    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
-    const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC / threads;
-    const double updates = static_cast<double>(lb.nodes()) * steps;
-    best = std::max(best, updates / dt * 1e-6);
-    best_cpu = std::max(best_cpu, updates / cpu * 1e-6);
+    const Timing t = TimeSteps(lb, steps, threads);
+    best = std::max(best, t.mlups);
+    best_cpu = std::max(best_cpu, t.cpu_mlups);
   }
   if (!lb.AllFinite()) std::printf("(non-finite state)\n");
   // A STREAM triad over the same footprint (three arrays of a third each), same threads: the
@@ -125,6 +148,40 @@ void Measure(Lattice& lb, int n, int threads, double bytes_per_update, double do
   std::fflush(stdout);
 }
 
+// --pattern compare: the two-lattice (A/B) and the in-place kernel of the same lattice in one
+// process, timed alternately o.repeats times (rounds), so that both see the same machine
+// state; prints each kernel's best and median MLUPS and the per-round ratios in place / A/B.
+template <class Lattice>
+void Compare(const ehd::LbmParameters& base, int n, int threads, const BenchOptions& o) {
+  ehd::LbmParameters p = base;
+  p.pattern = ehd::StreamingPattern::kTwoLattice;
+  Lattice two(p);
+  p.pattern = ehd::StreamingPattern::kInPlace;
+  Lattice in_place(p);
+  Prepare(two, n, o);
+  Prepare(in_place, n, o);
+  const int steps_two = CalibrateSteps(two, o.seconds);
+  const int steps_in_place = CalibrateSteps(in_place, o.seconds);
+  std::vector<double> mlups_two, mlups_in_place, ratios;
+  for (int rep = 0; rep < o.repeats; ++rep) {
+    mlups_two.push_back(TimeSteps(two, steps_two, threads).mlups);
+    mlups_in_place.push_back(TimeSteps(in_place, steps_in_place, threads).mlups);
+    ratios.push_back(mlups_in_place.back() / mlups_two.back());
+  }
+  if (!two.AllFinite() || !in_place.AllFinite()) std::printf("(non-finite state)\n");
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t m = v.size() / 2;
+    return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+  };
+  std::printf("%8d %8d %10.1f %10.1f %10.1f %10.1f %8.2f %8.2f %8.2f\n", n, threads,
+              *std::max_element(mlups_two.begin(), mlups_two.end()), median(mlups_two),
+              *std::max_element(mlups_in_place.begin(), mlups_in_place.end()),
+              median(mlups_in_place), *std::min_element(ratios.begin(), ratios.end()),
+              median(ratios), *std::max_element(ratios.begin(), ratios.end()));
+  std::fflush(stdout);
+}
+
 int main(int argc, char** argv) {
   ehd::RestartWithPassiveOpenMpWait(argv);  // lbm/openmp_wait.h
   std::vector<int> sizes = {256, 321, 512, 1024, 1281};
@@ -132,6 +189,7 @@ int main(int argc, char** argv) {
   std::vector<int> thread_counts = {1, 2};
   BenchOptions o;
   bool d3q19 = false;
+  bool compare = false;
   try {
     for (int k = 1; k < argc; ++k) {
       const std::string arg = argv[k];
@@ -150,8 +208,10 @@ int main(int argc, char** argv) {
         thread_counts = ParseList(value());
       } else if (arg == "--seconds") {
         o.seconds = std::stod(value());
+        if (!(o.seconds > 0)) throw std::invalid_argument("--seconds must be > 0");
       } else if (arg == "--repeats") {
         o.repeats = std::stoi(value());
+        if (o.repeats < 1) throw std::invalid_argument("--repeats must be >= 1");
       } else if (arg == "--forcing") {
         const std::string v = value();
         if (v != "split" && v != "guo") throw std::invalid_argument("--forcing split|guo");
@@ -175,8 +235,10 @@ int main(int argc, char** argv) {
           o.pattern = ehd::StreamingPattern::kTwoLattice;
         } else if (v == "inplace") {
           o.pattern = ehd::StreamingPattern::kInPlace;
+        } else if (v == "compare") {
+          compare = true;
         } else {
-          throw std::invalid_argument("--pattern auto|two|inplace");
+          throw std::invalid_argument("--pattern auto|two|inplace|compare");
         }
       } else if (arg == "--viscosity-field") {
         o.viscosity_field = true;
@@ -189,11 +251,42 @@ int main(int argc, char** argv) {
                  "lbm_bench: %s\nusage: lbm_bench [--lattice d2q9|d3q19] [--sizes 256,321,...] "
                  "[--threads 1,2] "
                  "[--seconds 0.5] [--repeats 3] [--forcing split|guo] [--viscosity-field] "
-                 "[--stores auto|cached|streaming] [--pattern auto|two|inplace]\n",
+                 "[--stores auto|cached|streaming] [--pattern auto|two|inplace|compare]\n",
                  e.what());
     return 2;
   }
   if (d3q19 && !sizes_given) sizes = {64, 100, 128};
+  if (compare) {
+    if (o.stores == ehd::PopulationStores::kStreaming) {
+      std::fprintf(stderr, "lbm_bench: --pattern compare needs --stores auto or cached\n");
+      return 2;
+    }
+    std::printf(
+        "%s MRT stream-collide, A/B against in place, shear walls, forcing %s%s, %d "
+        "alternated rounds of >= %.2f s each\n",
+        d3q19 ? "D3Q19" : "D2Q9", o.forcing == ehd::ForcingScheme::kGuo ? "guo" : "split",
+        o.viscosity_field ? ", viscosity field" : "", o.repeats, o.seconds);
+    std::printf("%8s %8s %10s %10s %10s %10s %8s %8s %8s\n", "N", "threads", "A/B best", "A/B med",
+                "inpl best", "inpl med", "x min", "x median", "x max");
+    for (int n : sizes) {
+      for (int t : thread_counts) {
+        ehd::LbmParameters p;
+        p.nx = p.ny = n;
+        p.nz = d3q19 ? n : 1;
+        p.viscosity = 0.1;
+        p.boundary = ehd::FluidBoundary::kShearWalls;
+        p.forcing = o.forcing;
+        p.threads = t;
+        p.stores = o.stores;
+        if (d3q19) {
+          Compare<ehd::LatticeBoltzmann3D>(p, n, t, o);
+        } else {
+          Compare<ehd::LatticeBoltzmann2D>(p, n, t, o);
+        }
+      }
+    }
+    return 0;
+  }
   // As LbmParameters::pattern resolves kAuto: in place, except D2Q9 with streaming stores.
   const bool in_place = o.pattern == ehd::StreamingPattern::kInPlace ||
                         (o.pattern == ehd::StreamingPattern::kAuto &&
