@@ -87,8 +87,11 @@ int Stability(const std::vector<std::string>& args) {
       {"Ca_E = 15 (the text's 5)", {"electric.max_Ca_E=15", "Ca_E=15"}},
       {"Ca = 0.6 (the text's 0.2)", {"max_Ca=10", "Ca=0.6"}},
       {"coarse mesh (162 vertices)", {"mesh_subdivisions=2"}},
-      // N with L: a stays 8 cells (at the scene's N a would grow to N / 2.6).
-      {"near the walls (L = 1.3 a, gap 2.4 h)", {"geometry.half_width=1.3", "N=21"}},
+      // N with L: a stays 8 cells (at the scene's N a would grow to N / 2.6). The walls only: x
+      // and z keep the scene's 3a (in a cube of 1.3 a the stretched capsule's tips come within
+      // 0.6 h of the electric box's x faces, and of its own periodic image).
+      {"near the walls (L = 1.3 a, gap 2.4 h)",
+       {"geometry.half_width=1.3", "geometry.half_length=3", "N=21"}},
   };
   const std::vector<Case> cases_2d = {
       {"reference", {}},

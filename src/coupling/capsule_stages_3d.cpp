@@ -352,7 +352,9 @@ void SpreadStage3D::Run(long) {
 FluidStage3D::FluidStage3D(const Scene& scene, const LatticeUnits& units, MembraneSurface3D& body)
     : scene_(scene), units_(units), body_(body) {
   LbmParameters p;
-  p.nx = p.ny = p.nz = scene.N;
+  p.nx = units.nx;
+  p.ny = units.ny;
+  p.nz = units.nz;
   p.viscosity = units.viscosity;
   p.threads = scene.numerics.threads;
   p.boundary = scene.has_shear() ? FluidBoundary::kShearWalls : FluidBoundary::kClosedBox;
@@ -369,8 +371,13 @@ FluidStage3D::FluidStage3D(const Scene& scene, const LatticeUnits& units, Membra
 
 std::string FluidStage3D::Describe() const {
   std::ostringstream out;
-  out << "D3Q19 MRT LBM " << scene_.N << "^3, tau = " << units_.tau
-      << " (s_e = s_q = s_nu, s_eps = s_pi = s_m = 1.8), "
+  out << "D3Q19 MRT LBM ";
+  if (units_.nx == units_.ny) {
+    out << units_.ny << "^3";
+  } else {
+    out << units_.nx << " x " << units_.ny << " x " << units_.nz;
+  }
+  out << ", tau = " << units_.tau << " (s_e = s_q = s_nu, s_eps = s_pi = s_m = 1.8), "
       << (scene_.has_shear() ? "moving shear walls, periodic x and z" : "closed box at rest");
   return out.str();
 }

@@ -86,6 +86,24 @@ void FastIimSolver3D::CheckResolution(const TriangleMesh& surface) const {
     }
   }
   const Eigen::Matrix3Xd& x = surface.vertices();
+  const Grid3D& g = grid();
+  const double margin = options_.min_face_distance_h * h;
+  for (int v = 0; v < surface.vertex_count(); ++v) {
+    for (int a = 0; a < 3; ++a) {
+      const double lo = g.origin(a), hi = lo + g.extent(a) * h, p = x(a, v);
+      if (p - lo < margin || hi - p < margin) {
+        const bool low = p - lo < hi - p;
+        std::ostringstream os;
+        os << "3D immersed interface: vertex " << v << " is " << (low ? p - lo : hi - p) / h
+           << " h from the box face "
+           << "xyz"[a] << " = " << (low ? lo : hi)
+           << " (< min_face_distance_h = " << options_.min_face_distance_h
+           << "): the fits and the corrections there reach the face's boundary condition; "
+              "enlarge the box";
+        throw SolverError(os.str());
+      }
+    }
+  }
   for (const auto& e : surface.edges()) {
     const double length = (x.col(e.a) - x.col(e.b)).norm();
     if (length > options_.max_edge_h * h) {

@@ -268,6 +268,13 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
     s.geometry.half_width = g.Number("half_width", LeftOpen(1.0, 1000.0), std::nullopt,
                                      three_d ? "half the box edge L in units of the radius a"
                                              : "domain half-width L in units of the radius a");
+    if (three_d) {
+      s.geometry.half_length =
+          g.Number("half_length", LeftOpen(1.0, 1000.0), s.geometry.half_width,
+                   "half the box's x and z edges in units of a (default half_width: a cube)");
+    } else {
+      g.Forbid("half_length", "a 2D scene's box is [-L, L]^2 (half_width)");
+    }
     if (s.geometry.shape == InitialShape::kEllipse) {
       s.geometry.aspect_ratio = g.Number("aspect_ratio", LeftOpen(0.0, 1.0), std::nullopt,
                                          "minor/major semi-axis of the initial ellipse");
@@ -648,8 +655,10 @@ std::string DescribeScene(const Scene& s) {
   if (s.electric_field) {
     out << "  Ca_E = " << s.Ca_E << ", sigma_r = " << s.sigma_r << ", eps_r = " << s.eps_r << '\n';
   }
-  out << "  N = " << s.N << (s.dimension == 3 ? " (N^3)" : "") << ", M = " << s.M
+  const bool cube = s.dimension != 3 || s.geometry.half_length == s.geometry.half_width;
+  out << "  N = " << s.N << (s.dimension == 3 && cube ? " (N^3)" : "") << ", M = " << s.M
       << ", L/a = " << s.geometry.half_width;
+  if (!cube) out << ", L_x/a = L_z/a = " << s.geometry.half_length;
   if (s.geometry.shape == InitialShape::kEllipse) out << ", b/a = " << s.geometry.aspect_ratio;
   out << '\n';
   for (const auto& o : s.overrides) out << "  override " << o << '\n';

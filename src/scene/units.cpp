@@ -10,6 +10,18 @@ namespace ehd {
 LatticeUnits DeriveLatticeUnits(const Scene& s) {
   LatticeUnits u;
   u.half_width = 0.5 * s.N;
+  u.ny = s.N;
+  u.nx = s.N;
+  if (s.dimension == 3 && s.geometry.half_length > 0) {
+    u.nx = static_cast<int>(std::lround(s.N * s.geometry.half_length / s.geometry.half_width));
+  }
+  u.nz = s.dimension == 3 ? u.nx : 1;
+  if (u.nx < 16 || u.nx > 4096) {
+    throw SceneError(
+        "scene " + s.name + ": geometry.half_length = " + std::to_string(s.geometry.half_length) +
+        " gives " + std::to_string(u.nx) + " cells along x and z at N = " + std::to_string(s.N) +
+        " (half_width = " + std::to_string(s.geometry.half_width) + "); the grid needs 16 to 4096");
+  }
   u.radius = u.half_width / s.geometry.half_width;
   // membrane_substeps n refines the time step at fixed h: nu -> nu / n (and k -> k / n through
   // k = Re nu / a^2), i.e. tau -> 1/2 + (tau - 1/2) / n.
@@ -67,8 +79,10 @@ std::string DescribeUnits(const Scene& s, const LatticeUnits& u) {
   out << std::setprecision(5);
   const char* t = s.membrane == MembraneKind::kDrop ? "gamma" : s.dimension == 3 ? "G_s" : "E_s";
   out << "lattice values (h = dt = rho = 1):\n"
-      << "  grid " << s.N << " x " << s.N << (s.dimension == 3 ? " x " + std::to_string(s.N) : "")
-      << ", L = " << u.half_width << ", a = " << u.radius << " cells, " << s.M
+      << "  grid " << u.nx << " x " << u.ny
+      << (s.dimension == 3 ? " x " + std::to_string(u.nz) : "") << ", L = " << u.half_width;
+  if (u.nx != u.ny) out << " (L_x = L_z = " << 0.5 * u.nx << ")";
+  out << ", a = " << u.radius << " cells, " << s.M
       << (s.dimension == 3 ? " vertices (mean edge ~" : " markers (spacing ")
       << (s.dimension == 3 ? u.radius * std::sqrt(8.0 * M_PI / (std::sqrt(3.0) * (s.M - 2)))
                            : 2.0 * M_PI * u.radius / s.M)

@@ -159,6 +159,22 @@ TEST(Simulation3D, CentredCapsuleOnAnOddGridIsNotRefusedAsFolded) {
   EXPECT_GT(sim.state().dxy, 0.0);
 }
 
+// A box longer along x and z than across the walls (geometry.half_length) is the lattice's and
+// the electric solver's grid, and the capsule is centred in it.
+TEST(Simulation3D, LongBoxIsTheGridOfEveryStage) {
+  Simulation sim(ParseScene(kTinySphere, {"geometry.half_length=4", "Ca_E=0.1", "sigma_r=2",
+                                          "eps_r=3.5", "numerics.threads=1"}));
+  EXPECT_EQ(sim.grid3d().nx, 32);
+  EXPECT_EQ(sim.grid3d().ny, 24);
+  EXPECT_EQ(sim.grid3d().nz, 32);
+  EXPECT_NE(sim.Pipeline().find("D3Q19 MRT LBM 32 x 24 x 32"), std::string::npos) << sim.Pipeline();
+  for (int i = 0; i < 20; ++i) sim.Step();
+  const Eigen::Vector3d centroid = sim.state().markers.rowwise().mean();
+  EXPECT_LT(centroid.norm(), 1e-3);
+  EXPECT_GT(sim.state().dxy, 0.0);
+  EXPECT_GT(sim.state().electric_force.colwise().norm().maxCoeff(), 0.0);
+}
+
 TEST(Simulation3D, CheckpointRestartAndResetAreBitForBit) {
   // With the volume correction too (every 4 steps: on both sides of the checkpoint), whose
   // running total is part of the checkpoint.

@@ -7,8 +7,8 @@
 // field E = -grad phi (observed orders printed). Above sigma^-/sigma^+ = 10 the solver seeks
 // [phi_n] in a spherical-harmonic basis with the flux balance deflated; without it GMRES stalls at
 // 1000:1. Refusals (a ratio above max_inner_ratio, a mesh the basis cannot parametrise, a source
-// without its interior integral, an unresolved curvature, a coarse mesh, a dimple thinner than h,
-// an unresolved potential) are checked by name.
+// without its interior integral, an unresolved curvature, a surface within 2 h of a box face, a
+// coarse mesh, a dimple thinner than h, an unresolved potential) are checked by name.
 #include "ehd_capsule/electric/fast_iim_solver_3d.h"
 
 #include <gtest/gtest.h>
@@ -313,6 +313,24 @@ TEST(FastIimSolver3D, RefusesWhatItCannotTrust) {
     FAIL() << "a sphere of radius 0.8 h was accepted";
   } catch (const SolverError& e) {
     EXPECT_NE(std::string(e.what()).find("max_curvature_h"), std::string::npos) << e.what();
+  }
+  // Near a face the fits' node balls are cut and the stencils reach the boundary rows: 2.5 h
+  // from the x face is solved, 1.5 h is refused by name.
+  {
+    TriangleMesh near_face = IcosphereMesh(3, 0.4);
+    Eigen::Matrix3Xd x = near_face.vertices();
+    x.row(0).array() += 0.35;  // the x = 1 face 0.25 = 2.5 h from the sphere
+    near_face.SetVertices(x);
+    EXPECT_NO_THROW(solver.Solve(near_face, problem, g, phi));
+    x.row(0).array() += 0.1;  // 1.5 h
+    near_face.SetVertices(x);
+    try {
+      solver.Solve(near_face, problem, g, phi);
+      FAIL() << "a sphere 1.5 h from the x face was accepted";
+    } catch (const SolverError& e) {
+      EXPECT_NE(std::string(e.what()).find("min_face_distance_h"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("face x = 1"), std::string::npos) << e.what();
+    }
   }
   try {
     solver.Solve(IcosphereMesh(1, 0.7), problem, g, phi);

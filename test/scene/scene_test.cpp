@@ -166,6 +166,33 @@ TEST(Units, RoundTripOfTheDimensionlessNumbers) {
   EXPECT_NEAR(d.steps_per_time_unit, d.viscosity * d.radius / d.tension, 1e-12);
 }
 
+// A 3D box longer along x and z than across the walls (geometry.half_length): round(N L_x / L)
+// cells there, a and the walls as in the cube; 2D has no such key, and a box too short is named.
+TEST(Units, ThreeDimensionalBoxMayBeLongerThanItsWallGap) {
+  const std::string sphere =
+      "name: box\ndimension: 3\nCa: 0.05\nRe: 0.1\nE_b: 0\nV: 1\nN: 21\nmesh_subdivisions: 3\n"
+      "law: neo_hookean\ngeometry: {shape: sphere, half_width: 1.3}\nmembrane: capsule\n"
+      "flow: shear\n";
+  const LatticeUnits cube = DeriveLatticeUnits(ParseScene(sphere));
+  EXPECT_EQ(cube.nx, 21);
+  EXPECT_EQ(cube.nz, 21);
+  const Scene long_box = ParseScene(sphere, {"geometry.half_length=3"});
+  const LatticeUnits u = DeriveLatticeUnits(long_box);
+  EXPECT_EQ(u.nx, 48);  // 21 * 3 / 1.3 = 48.5 rounds to 48
+  EXPECT_EQ(u.ny, 21);
+  EXPECT_EQ(u.nz, 48);
+  EXPECT_DOUBLE_EQ(u.radius, cube.radius);
+  EXPECT_DOUBLE_EQ(u.wall_speed, cube.wall_speed);
+  EXPECT_NE(DescribeUnits(long_box, u).find("grid 48 x 21 x 48"), std::string::npos);
+  ExpectSceneError(kMinimalCapsule, {"geometry.half_length=3"}, {"'geometry.half_length'", "2D"});
+  try {
+    DeriveLatticeUnits(ParseScene(sphere, {"geometry.half_length=1.01", "geometry.half_width=3"}));
+    FAIL() << "7 cells along x were accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("geometry.half_length"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Units, MachLimitFailsEarly) {
   // k L = Re nu L / a^2 = 50 * (1/6) * 16 / 16 = 8.3: far above 0.1 c_s.
   const Scene s = ParseScene(kMinimalCapsule, {"Re=50"});

@@ -47,8 +47,9 @@
 // refused above max_flux_balance_error. A mesh not of icosphere connectivity is refused there.
 //
 // Guarantees (SolverError naming the vertex or the quantity and the remedy): every vertex with
-// max(|kappa1|, |kappa2|) h <= max_curvature_h, every mesh edge <= max_edge_h * h (the jump data
-// live on the vertices), every fit with enough nodes; GMRES must converge; after the solve, the
+// max(|kappa1|, |kappa2|) h <= max_curvature_h and at least min_face_distance_h * h inside the
+// box, every mesh edge <= max_edge_h * h (the jump data live on the vertices), every fit with
+// enough nodes; GMRES must converge; after the solve, the
 // cubic and the quadratic fits of phi_n^- must agree to max_fit_disagreement of max |phi_n| at
 // every vertex (where they do not, the potential varies on the grid scale near the surface and
 // the answer cannot be trusted).
@@ -91,6 +92,10 @@ struct FastIim3DOptions {
   int fit_degree = 3;         // 3 (cubic) or 2 (quadratic)
   double max_curvature_h = 1.0;
   double max_edge_h = 2.0;
+  // Every vertex at least this far (in h) inside the box's faces: nearer, the fits' node balls
+  // (fit_radius_h) are cut by the face and the corrections' stencils reach the boundary rows, so
+  // the answer is not that of the interface problem any more.
+  double min_face_distance_h = 2.0;
   // sigma^-/sigma^+ above which the solve is refused.
   double max_inner_ratio = 1000.0;
   // sigma^-/sigma^+ above which G is sought in the spherical-harmonic basis with the flux balance

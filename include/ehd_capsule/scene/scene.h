@@ -46,7 +46,10 @@ const char* ToString(SurfaceLawKind law);
 
 struct SceneGeometry {
   InitialShape shape = InitialShape::kCircle;
-  double half_width = 4.0;    // L / a: the domain is [-L, L]^2
+  double half_width = 4.0;  // L / a: the domain is [-L, L]^2 (3D: the y extent, the walls)
+  // 3D: L_x / a = L_z / a, the half box along the flow and the vorticity; 0 (unset) = half_width,
+  // a cube. The grid has round(N half_length / half_width) cells along x and z.
+  double half_length = 0.0;
   double aspect_ratio = 1.0;  // ellipse: minor / major semi-axis (area pi a^2), x-major
   double center_x = 0.0;      // initial centroid offset in units of a
   double center_y = 0.0;

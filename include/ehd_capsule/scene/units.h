@@ -27,8 +27,11 @@ namespace ehd {
 struct LatticeUnits {
   double radius = 0;      // a in cells
   double half_width = 0;  // L in cells
-  double tau = 0;         // outer fluid
-  double viscosity = 0;   // nu outer (kinematic; rho = 1 so also mu)
+  // Grid cells per axis: N along y (and x in 2D); in 3D round(N L_x / L) along x and z
+  // (geometry.half_length), N for a cube.
+  int nx = 0, ny = 0, nz = 0;
+  double tau = 0;        // outer fluid
+  double viscosity = 0;  // nu outer (kinematic; rho = 1 so also mu)
   double tau_inner = 0;
   double viscosity_inner = 0;
   double shear_rate = 0;          // k per step (0 without shear)
