@@ -570,9 +570,27 @@ void FastIimSolver::CheckResolution(const ClosedCurve& curve) const {
   // the grid can see; the spline's curvature at a marker also reacts to marker-scale jitter
   // (bunched drop markers, a sawtooth of 0.01 h between two filter passes), which the jump
   // expansion does not (it uses the closest points of band points, a cell or more away).
-  const double h = poisson_.grid().h;
+  const Grid2D& g = poisson_.grid();
+  const double h = g.h;
   const Eigen::Matrix2Xd& x = curve.markers();
   const int m = curve.size();
+  const double margin = options_.min_face_distance_h * h;
+  for (int k = 0; k < m; ++k) {
+    for (int a = 0; a < 2; ++a) {
+      const double lo = g.origin(a), hi = lo + g.extent(a) * h, p = x(a, k);
+      if (p - lo < margin || hi - p < margin) {
+        const bool low = p - lo < hi - p;
+        std::ostringstream msg;
+        msg << "FastIimSolver: " << Point(curve, k) << " is " << (low ? p - lo : hi - p) / h
+            << " h from the box face "
+            << "xy"[a] << " = " << (low ? lo : hi)
+            << " (< min_face_distance_h = " << options_.min_face_distance_h
+            << "): between the last grid cells and the face the face's condition sets the "
+               "potential, not the interface problem; enlarge the box (or move the surface)";
+        throw SolverError(msg.str());
+      }
+    }
+  }
   auto menger = [&](int a, int b, int c) {
     const Eigen::Vector2d u = x.col(b) - x.col(a), v = x.col(c) - x.col(b);
     const Eigen::Vector2d w = x.col(c) - x.col(a);

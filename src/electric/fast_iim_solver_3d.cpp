@@ -98,8 +98,8 @@ void FastIimSolver3D::CheckResolution(const TriangleMesh& surface) const {
            << " h from the box face "
            << "xyz"[a] << " = " << (low ? lo : hi)
            << " (< min_face_distance_h = " << options_.min_face_distance_h
-           << "): the fits and the corrections there reach the face's boundary condition; "
-              "enlarge the box";
+           << "): between the last grid nodes and the face the face's condition sets the "
+              "potential, not the interface problem; enlarge the box (or move the surface)";
         throw SolverError(os.str());
       }
     }

@@ -107,7 +107,8 @@ struct FastIimOptions {
   // marker, the quantity and the remedy):
   // - before solving, every marker must have |kappa| h <= max_curvature_h (a tip tighter than
   //   the grid cannot be represented by the jump expansion about one closest point) and
-  //   |kappa| l <= pi/2 over each marker segment l (markers too sparse for the curve);
+  //   |kappa| l <= pi/2 over each marker segment l (markers too sparse for the curve), and
+  //   every marker at least min_face_distance_h * h inside the box's faces;
   // - after solving, the marker-scale (index fourth-difference) content of G must stay below
   //   max_marker_oscillation of max(|G|, |phi_n^+-|): a spike at a few markers is the signature
   //   of an unresolved tip;
@@ -119,6 +120,12 @@ struct FastIimOptions {
   //   estimate is in InterfaceSolveReport::estimated_error. Costs ~1/4 of a solve. A grid that
   //   cannot be coarsened (odd or < 32 cells) cannot be verified: SolverError too.
   double max_curvature_h = 1.0;
+  // Every marker at least this far (in h) inside the box's faces. Measured (test
+  // CurveNearABoxFaceIsAccurateOrRefused): the error of phi is that of a centred curve down to
+  // 0.75 h from a face; once the curve passes between the last cell centres and the face
+  // (< 0.5 h), whose ghost values the face's condition sets, it is O(1) (0.25 at 0.3 h from a
+  // Neumann face) and GMRES still converges. Twice that limit, as in 3D.
+  double min_face_distance_h = 1.0;
   double max_marker_oscillation = 0.1;
   double verify_min_ratio = 10.0;  // infinity: never verify
   double verify_tolerance = 0.05;
