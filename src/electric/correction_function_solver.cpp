@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ehd_capsule/electric/box_face_check.h"
 #include "ehd_capsule/electric/cfm_stencil_patch.h"
 
 namespace ehd {
@@ -52,6 +53,10 @@ CorrectionFunctionSolver::CorrectionFunctionSolver(const Grid2D& grid, const Poi
                                 std::to_string(options.interface_subintervals) +
                                 " must be in [1, " + std::to_string(max_sub) +
                                 "] (or 0 for the default)");
+  }
+  if (!(options_.min_face_distance_h >= 0.0)) {
+    throw std::invalid_argument("CorrectionFunctionSolver: min_face_distance_h = " +
+                                Text(options_.min_face_distance_h) + " must be >= 0");
   }
   inside_.assign(grid.size(), 0);
   hint_.assign(grid.size(), 0.0);
@@ -232,6 +237,8 @@ InterfaceSolveReport CorrectionFunctionSolver::Solve(const ClosedCurve& curve,
   }
   const Grid2D& g = grid_;
   const int m = curve.size();
+  CheckInsideBoxFaces(g, curve.markers(), options_.min_face_distance_h, "CorrectionFunctionSolver",
+                      "marker");
   if (!problem.f.empty() && problem.f.size() != g.size()) {
     throw std::invalid_argument("CorrectionFunctionSolver: f has " +
                                 std::to_string(problem.f.size()) + " values, grid has " +

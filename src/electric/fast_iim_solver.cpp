@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ehd_capsule/electric/box_face_check.h"
 #include "ehd_capsule/electric/jump_relations.h"
 #include "ehd_capsule/geometry/gauss_legendre.h"
 
@@ -574,23 +575,7 @@ void FastIimSolver::CheckResolution(const ClosedCurve& curve) const {
   const double h = g.h;
   const Eigen::Matrix2Xd& x = curve.markers();
   const int m = curve.size();
-  const double margin = options_.min_face_distance_h * h;
-  for (int k = 0; k < m; ++k) {
-    for (int a = 0; a < 2; ++a) {
-      const double lo = g.origin(a), hi = lo + g.extent(a) * h, p = x(a, k);
-      if (p - lo < margin || hi - p < margin) {
-        const bool low = p - lo < hi - p;
-        std::ostringstream msg;
-        msg << "FastIimSolver: " << Point(curve, k) << " is " << (low ? p - lo : hi - p) / h
-            << " h from the box face "
-            << "xy"[a] << " = " << (low ? lo : hi)
-            << " (< min_face_distance_h = " << options_.min_face_distance_h
-            << "): between the last grid cells and the face the face's condition sets the "
-               "potential, not the interface problem; enlarge the box (or move the surface)";
-        throw SolverError(msg.str());
-      }
-    }
-  }
+  CheckInsideBoxFaces(g, x, options_.min_face_distance_h, "FastIimSolver", "marker");
   auto menger = [&](int a, int b, int c) {
     const Eigen::Vector2d u = x.col(b) - x.col(a), v = x.col(c) - x.col(b);
     const Eigen::Vector2d w = x.col(c) - x.col(a);

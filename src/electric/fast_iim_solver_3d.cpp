@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ehd_capsule/electric/box_face_check.h"
 #include "ehd_capsule/electric/interface_jumps_3d.h"
 #include "ehd_capsule/geometry/spherical_harmonics.h"
 
@@ -86,24 +87,7 @@ void FastIimSolver3D::CheckResolution(const TriangleMesh& surface) const {
     }
   }
   const Eigen::Matrix3Xd& x = surface.vertices();
-  const Grid3D& g = grid();
-  const double margin = options_.min_face_distance_h * h;
-  for (int v = 0; v < surface.vertex_count(); ++v) {
-    for (int a = 0; a < 3; ++a) {
-      const double lo = g.origin(a), hi = lo + g.extent(a) * h, p = x(a, v);
-      if (p - lo < margin || hi - p < margin) {
-        const bool low = p - lo < hi - p;
-        std::ostringstream os;
-        os << "3D immersed interface: vertex " << v << " is " << (low ? p - lo : hi - p) / h
-           << " h from the box face "
-           << "xyz"[a] << " = " << (low ? lo : hi)
-           << " (< min_face_distance_h = " << options_.min_face_distance_h
-           << "): between the last grid nodes and the face the face's condition sets the "
-              "potential, not the interface problem; enlarge the box (or move the surface)";
-        throw SolverError(os.str());
-      }
-    }
-  }
+  CheckInsideBoxFaces(grid(), x, options_.min_face_distance_h, "3D immersed interface", "vertex");
   for (const auto& e : surface.edges()) {
     const double length = (x.col(e.a) - x.col(e.b)).norm();
     if (length > options_.max_edge_h * h) {

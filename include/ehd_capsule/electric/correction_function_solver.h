@@ -51,6 +51,9 @@ struct CorrectionFunctionOptions {
   // (Continuing the arms across Sigma with the patches' D, as the IIM does with its J, was
   // erratic: errors up to 1e-2 at some N on the non-circular curves.)
   bool deferred_correction = true;
+  // Every marker at least this far (in h) inside the box's faces, else SolverError naming it
+  // (electric/box_face_check.h: without it, a curve within 0.5 h of a face is solved O(1) wrong).
+  double min_face_distance_h = 1.0;
 };
 
 class CorrectionFunctionSolver {
