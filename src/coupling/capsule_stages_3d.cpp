@@ -224,7 +224,7 @@ void ElectricStage3D::Restore(CheckpointReader& r) {
 
 MembraneStage3D::MembraneStage3D(const Scene& scene, const LatticeUnits& units,
                                  MembraneSurface3D& body)
-    : body_(body) {
+    : body_(body), modulus_(units.tension) {
   // Vertices farther apart than 2 h leave holes the immersed boundary leaks through (the 4-point
   // kernel's support is 4 h): refuse the scene, naming the subdivision that closes them (each
   // level halves the edges).
@@ -296,6 +296,13 @@ MembraneStage3D::MembraneStage3D(const Scene& scene, const LatticeUnits& units,
                      std::to_string(scene.numerics.membrane_substeps) + ")");
   }
   stability_ = "explicit limit dt <= " + FormatValue(dt_stable);
+}
+
+std::vector<double> MembraneStage3D::VertexTension() const {
+  if (!elasticity_) return std::vector<double>(body_.mesh.vertex_count(), 1.0);
+  std::vector<double> tension = elasticity_->VertexMeanTension(body_.mesh.vertices());
+  for (double& t : tension) t /= modulus_;
+  return tension;
 }
 
 std::string MembraneStage3D::Describe() const {

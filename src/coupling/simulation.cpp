@@ -250,6 +250,18 @@ const std::vector<double>& Simulation::uz() const {
   if (!impl_->fluid3) throw std::logic_error("Simulation::uz: a 2D simulation has no z velocity");
   return impl_->fluid3->lattice().velocity(2);
 }
+std::vector<double> Simulation::VertexTension() const {
+  if (!impl_->membrane3) {
+    throw std::logic_error("Simulation::VertexTension: a 2D simulation has no surface mesh");
+  }
+  return impl_->membrane3->VertexTension();
+}
+Eigen::Matrix3Xd Simulation::VertexVelocity() const {
+  if (!impl_->three_d()) {
+    throw std::logic_error("Simulation::VertexVelocity: a 2D simulation has no surface mesh");
+  }
+  return impl_->surface->U * (units_.steps_per_time_unit / units_.radius);
+}
 const Grid2D& Simulation::grid() const {
   if (impl_->three_d()) throw std::logic_error("Simulation::grid: a 3D simulation has grid3d()");
   return grid_;

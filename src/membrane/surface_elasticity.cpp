@@ -146,6 +146,23 @@ std::vector<Eigen::Vector2d> SurfaceElasticity::Stretches(const Eigen::Matrix3Xd
   return out;
 }
 
+std::vector<double> SurfaceElasticity::VertexMeanTension(const Eigen::Matrix3Xd& X) const {
+  const std::vector<Eigen::Vector2d> stretches = Stretches(X);
+  std::vector<double> sum(X.cols(), 0.0), weight(X.cols(), 0.0);
+  for (std::size_t t = 0; t < triangles_.size(); ++t) {
+    const auto& tri = triangles_[t];
+    const double area =
+        0.5 * (X.col(tri[1]) - X.col(tri[0])).cross(X.col(tri[2]) - X.col(tri[0])).norm();
+    const double mean = PrincipalTensions(params_, stretches[t](0), stretches[t](1)).mean();
+    for (int c = 0; c < 3; ++c) {
+      sum[tri[c]] += area * mean;
+      weight[tri[c]] += area;
+    }
+  }
+  for (std::size_t v = 0; v < sum.size(); ++v) sum[v] = weight[v] > 0.0 ? sum[v] / weight[v] : 0.0;
+  return sum;
+}
+
 std::string SurfaceElasticity::Describe() const {
   std::ostringstream o;
   o << ToString(params_.law) << " finite elements (" << triangles_.size()

@@ -50,6 +50,43 @@ TEST(Simulation3D, SphereInShearDeformsTiltsAndKeepsItsVolume) {
   EXPECT_EQ(sim.grid3d().nz, 24);
 }
 
+// What the node colours the surface by: the tension is zero on the initial (reference) shape
+// and positive once the shear stretches the capsule, largest where it is stretched most; the
+// vertices move with the imposed shear u_x = k y, i.e. y / a in units of a k, at the first step
+// (the fluid starts as the undisturbed shear flow).
+TEST(Simulation3D, VertexTensionAndVelocityFollowTheShape) {
+  Simulation sim(ParseScene(kTinySphere));
+  for (double t : sim.VertexTension()) EXPECT_NEAR(t, 0.0, 1e-12);
+  EXPECT_EQ(sim.VertexVelocity().cols(), 642);
+  EXPECT_EQ(sim.VertexVelocity().norm(), 0.0);
+  sim.Step();
+  const double a = sim.units().radius;
+  const Eigen::Matrix3Xd u = sim.VertexVelocity();
+  ASSERT_EQ(u.cols(), sim.state().markers.cols());
+  const double yc = sim.state().markers.row(1).mean();
+  double worst = 0;
+  for (int v = 0; v < u.cols(); ++v) {
+    worst = std::max(worst, std::abs(u(0, v) - (sim.state().markers(1, v) - yc) / a));
+  }
+  std::printf("first step: max |u_x - y/a| = %.3e (u_x up to 1)\n", worst);
+  EXPECT_LT(worst, 0.05);
+  while (sim.state().time < 0.5) sim.Step();
+  const std::vector<double> tension = sim.VertexTension();
+  double mean = 0, top = -1e300;
+  int at = 0;
+  for (int v = 0; v < static_cast<int>(tension.size()); ++v) {
+    mean += tension[v] / tension.size();
+    if (tension[v] > top) top = tension[v], at = v;
+  }
+  const Eigen::Vector3d r = sim.state().markers.col(at) - sim.state().markers.rowwise().mean();
+  std::printf("t = 0.5: mean tension %.4f G_s, max %.4f at r = (%.2f, %.2f, %.2f) a\n", mean, top,
+              r.x() / a, r.y() / a, r.z() / a);
+  EXPECT_GT(mean, 0.0);
+  EXPECT_LT(top, 1.0);
+  EXPECT_GT(top, 2.0 * mean);
+  EXPECT_THROW(Simulation(LoadScene("shear_field")).VertexTension(), std::logic_error);
+}
+
 // Small-deformation limit (Barthes-Biesel & Rallison 1981): D = (25/4) mu k a / E_s with the
 // surface Young modulus E_s = 3 G_s of the neo-Hookean law, i.e. D = (25/12) Ca for the
 // shear-modulus capillary number Ca = mu k a / G_s used here. On this coarse grid (a = 4 cells)

@@ -164,5 +164,27 @@ TEST(SurfaceElasticity, RejectsBadParametersAndInvertedTriangles) {
   EXPECT_THROW(el.ComputeForces(x, f), std::runtime_error);
 }
 
+TEST(SurfaceElasticity, VertexMeanTensionOfAnInflatedAndARigidlyMovedSphere) {
+  // Inflated by l: every triangle has l1 = l2 = l, so every vertex has the isotropic tension of
+  // the closed forms above (neo-Hookean g (1 - l^-6), zero-thickness g (1 - l^-2 + 2 log(l^2) /
+  // l^2), Skalak g (l^2 - 1 + C l^2 (l^4 - 1))). A rotation and translation: zero.
+  const TriangleMesh m = IcosphereMesh(2);
+  for (const SurfaceLawParameters& law : kLaws) {
+    const SurfaceElasticity el(law, m);
+    const double l = 1.15, g = law.shear_modulus;
+    const double exact = law.law == SurfaceLaw::kNeoHookean ? g * (1 - std::pow(l, -6))
+                         : law.law == SurfaceLaw::kZeroThickness
+                             ? g * (1 - 1 / (l * l) + 2 * std::log(l * l) / (l * l))
+                             : g * (l * l - 1 + law.area_dilation * l * l * (std::pow(l, 4) - 1));
+    for (double tau : el.VertexMeanTension(l * m.vertices())) {
+      EXPECT_NEAR(tau, exact, 1e-12 * std::abs(exact)) << ToString(law.law);
+    }
+    const Eigen::Matrix3d r =
+        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+    const Eigen::Matrix3Xd moved = (r * m.vertices()).colwise() + Eigen::Vector3d(0.3, -2, 5);
+    for (double tau : el.VertexMeanTension(moved)) EXPECT_NEAR(tau, 0.0, 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace ehd

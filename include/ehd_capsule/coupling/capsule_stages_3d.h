@@ -99,9 +99,13 @@ class MembraneStage3D : public StepStage {
   void Run(long step) override;
   void Save(CheckpointWriter&) const override {}  // a function of the vertex positions
   void Restore(CheckpointReader&) override {}
+  // The in-plane mean principal tension (tau_1 + tau_2) / 2 at each vertex of the present
+  // shape, in units of the scene's modulus (a drop: gamma, so 1 everywhere).
+  std::vector<double> VertexTension() const;
 
  private:
   MembraneSurface3D& body_;
+  double modulus_ = 1;                             // units.tension (lattice)
   std::unique_ptr<SurfaceElasticity> elasticity_;  // capsule
   std::unique_ptr<HelfrichBending> bending_;       // capsule with E_b > 0
   double tension_ = 0;                             // drop: surface tension gamma

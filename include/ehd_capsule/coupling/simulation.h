@@ -69,6 +69,12 @@ class Simulation {
   const std::vector<double>& ux() const;
   const std::vector<double>& uy() const;
   const std::vector<double>& uz() const;  // 3D only (throws std::logic_error in 2D)
+  // 3D only (each throws std::logic_error in 2D), per vertex of state().markers: the in-plane
+  // mean principal tension (tau_1 + tau_2) / 2 in units of the scene's modulus (G_s; a drop:
+  // gamma, 1 everywhere), and the velocity of the last marker step in a per time unit (zero
+  // before the first step and after a reset).
+  std::vector<double> VertexTension() const;
+  Eigen::Matrix3Xd VertexVelocity() const;
   // 3D: the membrane's triangles (vertex indices into state().markers); empty in 2D.
   const std::vector<std::array<int, 3>>& triangles() const;
   // Electric potential on the grid (empty without field).

@@ -72,6 +72,10 @@ class SurfaceElasticity {
   double Energy(const Eigen::Matrix3Xd& X) const;
   // Principal stretches (l1 >= l2) of each triangle.
   std::vector<Eigen::Vector2d> Stretches(const Eigen::Matrix3Xd& X) const;
+  // Mean principal tension (tau_1 + tau_2) / 2 at each vertex: each triangle's, from its
+  // stretches, averaged over the vertex's triangles with their deformed areas as weights (what
+  // the node colours the surface by; no bending part).
+  std::vector<double> VertexMeanTension(const Eigen::Matrix3Xd& X) const;
 
   const SurfaceLawParameters& parameters() const { return params_; }
   double reference_area() const { return reference_area_; }
