@@ -5,7 +5,12 @@ if(EHD_ROS_SOURCES)
   target_include_directories(ehd_capsule_node PRIVATE ${catkin_INCLUDE_DIRS}
                              ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
   target_link_libraries(ehd_capsule_node PRIVATE ehd_core ${catkin_LIBRARIES})
-  target_compile_options(ehd_capsule_node PRIVATE ${EHD_WARNINGS})
+  # The core's flags too: Eigen's alignment (EIGEN_MAX_ALIGN_BYTES) follows -march, and with
+  # different alignments a matrix the core allocates (Simulation::VertexVelocity) and the node
+  # frees goes through two different allocators ("double free or corruption" at the first
+  # speed-coloured surface), besides breaking the one-definition rule for every inlined Eigen
+  # function the two share.
+  target_compile_options(ehd_capsule_node PRIVATE ${EHD_WARNINGS} ${EHD_CORE_OPT})
   add_dependencies(ehd_capsule_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 endif()
 

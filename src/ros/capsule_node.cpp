@@ -125,6 +125,9 @@ void CapsuleNode::ReadParameters() {
   pnh_.param("velocity_arrows", velocity_arrows_, false);
   pnh_.param("velocity_stride", velocity_stride_, 8);
   if (velocity_stride_ < 1) throw std::invalid_argument("~velocity_stride must be >= 1");
+  std::string surface_colour;
+  pnh_.param<std::string>("surface_colour", surface_colour, "traction");
+  surface_colour_ = ParseSurfaceColour(surface_colour);
   pnh_.param<std::string>("world_frame", world_frame_, "world");
   if (world_frame_.empty() || world_frame_ == frame_id_) {
     throw std::invalid_argument("~world_frame ('" + world_frame_ +
@@ -547,7 +550,7 @@ void CapsuleNode::PublishField(bool force) {
   last_field_step_ = sim_->state().step;
   last_field_time_ = sim_->state().time;
   const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
-                                      velocity_stride_};
+                                      velocity_stride_, surface_colour_};
   const ros::Time stamp = StampNow();
   const visualization_msgs::MarkerArray field =
       MakeFieldLayer(*sim_, field_layer_, field_stride_, settings, stamp);
@@ -562,7 +565,7 @@ void CapsuleNode::PublishThrottled() {
   last_throttled_ = now;
   last_throttled_step_ = sim_->state().step;
   const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
-                                      velocity_stride_};
+                                      velocity_stride_, surface_colour_};
   throttled_pub_.publish(MakeCapsuleState(*sim_, settings, StampNow()));
 }
 
@@ -593,7 +596,7 @@ void CapsuleNode::PublishState() {
     Record("/clock", clock, clock.clock);
   }
   const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
-                                      velocity_stride_};
+                                      velocity_stride_, surface_colour_};
   const ehd_capsule::CapsuleState state = MakeCapsuleState(*sim_, settings, stamp);
   const geometry_msgs::PolygonStamped shape = MakeShape(*sim_, settings, stamp);
   state_pub_.publish(state);
@@ -620,7 +623,7 @@ void CapsuleNode::PublishState() {
 void CapsuleNode::PublishSurfaceMesh() {
   if (sim_->dimension() != 3) return;
   const StateMessageSettings settings{frame_id_, force_arrow_scale_, velocity_arrows_,
-                                      velocity_stride_};
+                                      velocity_stride_, surface_colour_};
   const ehd_capsule::SurfaceMesh mesh = MakeSurfaceMesh(*sim_, settings, StampNow());
   surface_mesh_pub_.publish(mesh);
   Record("surface_mesh", mesh, StampNow());

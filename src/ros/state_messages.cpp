@@ -210,6 +210,48 @@ geometry_msgs::PolygonStamped MakeShape(const Simulation& sim, const StateMessag
   return poly;
 }
 
+SurfaceColour ParseSurfaceColour(const std::string& name) {
+  if (name == "traction") return SurfaceColour::kTraction;
+  if (name == "tension") return SurfaceColour::kTension;
+  if (name == "speed") return SurfaceColour::kSpeed;
+  if (name == "none") return SurfaceColour::kNone;
+  throw std::invalid_argument("~surface_colour must be traction, tension, speed or none (got '" +
+                              name + "')");
+}
+
+namespace {
+
+// The per-vertex value the 3D surface is coloured by; empty for one colour (kNone, or the
+// traction without a field).
+std::vector<double> SurfaceColourQuantity(const Simulation& sim, SurfaceColour colour) {
+  const SimulationState& s = sim.state();
+  switch (colour) {
+    case SurfaceColour::kTraction: {
+      if (s.electric_force.cols() != s.markers.cols()) return {};
+      const Eigen::Vector3d centroid = s.markers.rowwise().mean();
+      std::vector<double> normal_traction(s.markers.cols());
+      for (int k = 0; k < s.markers.cols(); ++k) {
+        const Eigen::Vector3d n = (s.markers.col(k) - centroid).normalized();
+        normal_traction[k] = s.electric_force.col(k).dot(n);
+      }
+      return normal_traction;
+    }
+    case SurfaceColour::kTension:
+      return sim.VertexTension();
+    case SurfaceColour::kSpeed: {
+      const Eigen::Matrix3Xd u = sim.VertexVelocity();
+      std::vector<double> speed(u.cols());
+      for (int k = 0; k < u.cols(); ++k) speed[k] = u.col(k).norm();
+      return speed;
+    }
+    case SurfaceColour::kNone:
+      break;
+  }
+  return {};
+}
+
+}  // namespace
+
 visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
                                                 const StateMessageSettings& settings,
                                                 const ros::Time& stamp) {
@@ -240,25 +282,20 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
   }
   array.markers.push_back(membrane);
   if (three_d) {
-    // The surface as a shaded triangle list, coloured by the normal electric traction where
-    // there is a field (dark blue: pulled inwards most, yellow: outwards most), else one colour.
+    // The surface as a shaded triangle list, coloured by ~surface_colour (dark blue: lowest,
+    // yellow: highest): the normal electric traction where there is a field (pulled inwards
+    // most to outwards most), the membrane tension, or the vertex speed; else one colour.
     visualization_msgs::Marker surface =
         BaseMarker(settings, stamp, "surface", 5, visualization_msgs::Marker::TRIANGLE_LIST);
     surface.scale.x = surface.scale.y = surface.scale.z = 1.0;
     surface.color = Color(0.55f, 0.7f, 0.95f, 1.0f);
-    const bool coloured = s.electric_force.cols() == s.markers.cols();
-    const Eigen::Vector3d centroid = s.markers.rowwise().mean();
-    std::vector<double> normal_traction;
+    const std::vector<double> quantity = SurfaceColourQuantity(sim, settings.surface_colour);
+    const bool coloured = !quantity.empty();
     double lo = 0, hi = 0;
     if (coloured) {
-      normal_traction.resize(s.markers.cols());
-      for (int k = 0; k < s.markers.cols(); ++k) {
-        const Eigen::Vector3d n = (s.markers.col(k) - centroid).normalized();
-        normal_traction[k] = s.electric_force.col(k).dot(n);
-      }
       // The ramp spans the 2nd to the 98th percentile, so a few extreme vertices do not leave
       // the rest of the surface in one colour.
-      std::vector<double> sorted = normal_traction;
+      std::vector<double> sorted = quantity;
       std::sort(sorted.begin(), sorted.end());
       lo = sorted[static_cast<std::size_t>(0.02 * (sorted.size() - 1))];
       hi = sorted[static_cast<std::size_t>(0.98 * (sorted.size() - 1))];
@@ -271,7 +308,7 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
         if (coloured) {
           // Opaque: rviz does not sort a list's triangles, so a translucent surface shows its
           // back half through the front in patches.
-          std_msgs::ColorRGBA colour = Ramp(hi > lo ? (normal_traction[v] - lo) / (hi - lo) : 0.5);
+          std_msgs::ColorRGBA colour = Ramp(hi > lo ? (quantity[v] - lo) / (hi - lo) : 0.5);
           colour.a = 1.0f;
           surface.colors.push_back(colour);
         }

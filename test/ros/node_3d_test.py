@@ -112,6 +112,11 @@ class Node3dTest(unittest.TestCase):
         surface = by_ns["surface"]
         self.assertEqual(surface.type, Marker.TRIANGLE_LIST)
         self.assertEqual(len(surface.points), 3 * 1280)
+        # ~surface_colour speed: one colour per point, spread over the ramp (the drop's
+        # circulation moves its poles and equator at different speeds).
+        self.assertEqual(len(surface.colors), len(surface.points))
+        reds = [c.r for c in surface.colors]
+        self.assertGreater(max(reds) - min(reds), 0.3)
         section = by_ns["membrane"]
         self.assertEqual(section.type, Marker.LINE_STRIP)
         self.assertGreater(len(section.points), 10)

@@ -94,6 +94,7 @@ class CapsuleNode {
   double force_arrow_scale_ = 1.0;
   bool velocity_arrows_ = false;
   int velocity_stride_ = 8;
+  SurfaceColour surface_colour_ = SurfaceColour::kTraction;  // 3D surface colouring
   double max_step_rate_ = 0.0;    // steps per wall second, 0: as fast as possible
   double progress_period_ = 5.0;  // wall seconds between console progress lines, 0: none
   ros::WallTime last_progress_, run_start_;

@@ -17,11 +17,19 @@
 
 namespace ehd::ros_node {
 
+// What the 3D surface's TRIANGLE_LIST is coloured by (~surface_colour): the normal electric
+// traction (one colour without a field), the in-plane mean membrane tension, the vertex speed,
+// or one colour.
+enum class SurfaceColour { kTraction, kTension, kSpeed, kNone };
+// "traction", "tension", "speed" or "none"; std::invalid_argument naming ~surface_colour else.
+SurfaceColour ParseSurfaceColour(const std::string& name);
+
 struct StateMessageSettings {
   std::string frame_id = "ehd";
   double force_arrow_scale = 1.0;  // arrow length (units of a) per unit dimensionless force
   bool velocity_arrows = false;
   int velocity_stride = 8;  // one velocity arrow every n grid cells
+  SurfaceColour surface_colour = SurfaceColour::kTraction;
 };
 
 // Lattice length of the capsule radius a, and the lattice force-density scale T/a.
