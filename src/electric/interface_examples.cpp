@@ -189,7 +189,7 @@ Grid2D InterfaceExample::MakeGrid(int n) const {
 }
 
 InterfaceProblem SampleInterfaceProblem(const InterfaceExample& e, const Grid2D& grid,
-                                        const ClosedCurve& curve) {
+                                        const ClosedCurve& curve, const PoissonBoundaries& bc) {
   InterfaceProblem p;
   p.sigma_minus = e.sigma_minus;
   p.sigma_plus = e.sigma_plus;
@@ -219,7 +219,7 @@ InterfaceProblem SampleInterfaceProblem(const InterfaceExample& e, const Grid2D&
     const Vec q(x, y);
     return curve.Contains(q) ? e.grad_minus(q) : e.grad_plus(q);
   };
-  p.boundary = SampleBoundaryData(grid, PoissonBoundaries{}, value, gradient);
+  p.boundary = SampleBoundaryData(grid, bc, value, gradient);
   return p;
 }
 

@@ -227,57 +227,5 @@ TEST(CorrectionFunctionSolver, DISABLED_ConvergenceTable) {
   }
 }
 
-// The ellipse example (sigma^- = sigma^+) with Neumann x sides, shifted so that its rightmost
-// marker is d h from the face x = 1 on N = 40: the max error of phi, or -1 when refused.
-double CfmErrorNearTheFace(double d, double min_face_distance_h, std::string* refusal) {
-  const InterfaceExample e = MakeInterfaceExample("ellipse", 1.0, 1.0);
-  const int n = 40;
-  const Grid2D g = e.MakeGrid(n);
-  Eigen::Matrix2Xd x = e.Markers(e.DefaultMarkers(n));
-  x.row(0).array() += g.x_max() - d * g.h - x.row(0).maxCoeff();
-  const ClosedCurve c(x);
-  CorrectionFunctionOptions options;
-  options.min_face_distance_h = min_face_distance_h;
-  const PoissonBoundaries bc{BoundaryKind::kNeumann, BoundaryKind::kNeumann,
-                             BoundaryKind::kDirichlet, BoundaryKind::kDirichlet};
-  CorrectionFunctionSolver solver(g, bc, options);
-  InterfaceProblem problem = SampleInterfaceProblem(e, g, c);
-  for (int j = 0; j < g.ny; ++j) {  // outward normal derivatives of phi^+
-    problem.boundary.x_min[j] = -e.grad_plus(Eigen::Vector2d(g.x0, g.y(j))).x();
-    problem.boundary.x_max[j] = e.grad_plus(Eigen::Vector2d(g.x_max(), g.y(j))).x();
-  }
-  std::vector<double> phi;
-  try {
-    solver.Solve(c, problem, phi);
-  } catch (const SolverError& err) {
-    if (refusal) *refusal = err.what();
-    return -1.0;
-  }
-  const std::vector<double> exact = ExactSolution(e, g, c);
-  double err = 0;
-  for (std::size_t k = 0; k < phi.size(); ++k) err = std::max(err, std::abs(phi[k] - exact[k]));
-  return err;
-}
-
-TEST(CorrectionFunctionSolver, CurveNearABoxFaceIsAccurateOrRefused) {
-  // Measured without the check: 4.8e-4 at 8 h, 4.0e-4 at 1 h, 2.5e-4 at 0.75 h; 0.10 at 0.5 h,
-  // 0.27 at 0.3 h, reported as converged with no failed patch.
-  const double far = CfmErrorNearTheFace(8.0, 0.0, nullptr);
-  EXPECT_LT(far, 1e-3);
-  EXPECT_GT(CfmErrorNearTheFace(0.3, 0.0, nullptr), 0.05);  // why the check exists
-  EXPECT_LT(CfmErrorNearTheFace(1.25, CorrectionFunctionOptions().min_face_distance_h, nullptr),
-            2.0 * far);
-  std::string refusal;
-  EXPECT_EQ(CfmErrorNearTheFace(0.75, CorrectionFunctionOptions().min_face_distance_h, &refusal),
-            -1.0);
-  EXPECT_NE(refusal.find("min_face_distance_h"), std::string::npos) << refusal;
-  EXPECT_NE(refusal.find("face x = 1"), std::string::npos) << refusal;
-  CorrectionFunctionOptions bad;
-  bad.min_face_distance_h = -1.0;
-  EXPECT_THROW(CorrectionFunctionSolver(MakeInterfaceExample("ellipse").MakeGrid(40),
-                                        PoissonBoundaries{}, bad),
-               std::invalid_argument);
-}
-
 }  // namespace
 }  // namespace ehd

@@ -825,52 +825,5 @@ TEST(FastIimSolver, VerificationOnlyAboveItsRatioAndRefusedWhereItCannotRun) {
   }
 }
 
-// The ellipse example with Neumann x sides (the 2D shear scenes' box), shifted so that its
-// rightmost marker is d h from the face x = 1; the max error of phi over the grid, or -1 when
-// the solver refuses (the message in *refusal).
-double ErrorNearTheFace(double d, double min_face_distance_h, std::string* refusal) {
-  const InterfaceExample e = MakeInterfaceExample("ellipse", 1.0, 2.0);
-  const int n = 40;
-  const Grid2D g = e.MakeGrid(n);
-  Eigen::Matrix2Xd x = e.Markers(e.DefaultMarkers(n));
-  x.row(0).array() += g.x_max() - d * g.h - x.row(0).maxCoeff();
-  const ClosedCurve c(x);
-  FastIimOptions options;
-  options.min_face_distance_h = min_face_distance_h;
-  const PoissonBoundaries bc{BoundaryKind::kNeumann, BoundaryKind::kNeumann,
-                             BoundaryKind::kDirichlet, BoundaryKind::kDirichlet};
-  FastIimSolver solver(g, bc, options);
-  InterfaceProblem problem = SampleInterfaceProblem(e, g, c);
-  for (int j = 0; j < g.ny; ++j) {  // outward normal derivatives of phi^+
-    problem.boundary.x_min[j] = -e.grad_plus(Eigen::Vector2d(g.x0, g.y(j))).x();
-    problem.boundary.x_max[j] = e.grad_plus(Eigen::Vector2d(g.x_max(), g.y(j))).x();
-  }
-  std::vector<double> gv, phi;
-  try {
-    solver.Solve(c, problem, gv, phi);
-  } catch (const SolverError& err) {
-    if (refusal) *refusal = err.what();
-    return -1.0;
-  }
-  const std::vector<double> exact = ExactSolution(e, g, c);
-  double err = 0;
-  for (std::size_t k = 0; k < phi.size(); ++k) err = std::max(err, std::abs(phi[k] - exact[k]));
-  return err;
-}
-
-TEST(FastIimSolver, CurveNearABoxFaceIsAccurateOrRefused) {
-  // Measured without the check (N = 40, Neumann face): 1.5e-4 at 8 h, 1.6e-4 at 4 h, 2.5e-4 at
-  // 1 h, 2.0e-4 at 0.75 h; once the curve passes between the last cell centres and the face
-  // (< 0.5 h) the answer is O(1) wrong: 0.11 at 0.5 h, 0.25 at 0.3 h, and GMRES converges.
-  const double far = ErrorNearTheFace(8.0, 0.0, nullptr);
-  EXPECT_LT(far, 3e-4);
-  EXPECT_GT(ErrorNearTheFace(0.3, 0.0, nullptr), 0.05);  // why the check exists
-  EXPECT_LT(ErrorNearTheFace(1.25, FastIimOptions().min_face_distance_h, nullptr), 3.0 * far);
-  std::string refusal;
-  EXPECT_EQ(ErrorNearTheFace(0.75, FastIimOptions().min_face_distance_h, &refusal), -1.0);
-  EXPECT_NE(refusal.find("min_face_distance_h"), std::string::npos) << refusal;
-  EXPECT_NE(refusal.find("face x = 1"), std::string::npos) << refusal;
-}
-
 }  // namespace
 }  // namespace ehd

@@ -1,7 +1,7 @@
 // The check every electric solver makes before solving: each interface point (marker or vertex)
 // at least min_face_distance_h cells inside the faces of the solver's box. Measured on exact
-// solutions (tests CurveNearABoxFaceIsAccurateOrRefused, SurfaceNearABoxFaceIsAccurateOrRefused,
-// CorrectionFunctionSolver.CurveNearABoxFaceIsAccurateOrRefused): the error is that of a centred
+// solutions (test/electric/box_face_check_test.cpp for the 2D fast IIM and the CFM,
+// FastIimSolver3D.SurfaceNearABoxFaceIsAccurateOrRefused): the error is that of a centred
 // interface down to 0.5-0.75 h from a face; once the interface passes between the last cell
 // centres and the face, the face's condition sets the ghost values there instead of the
 // interface problem, and the answer is O(1) wrong (0.1-0.3 on an O(1) potential) while every

@@ -120,8 +120,8 @@ struct FastIimOptions {
   //   estimate is in InterfaceSolveReport::estimated_error. Costs ~1/4 of a solve. A grid that
   //   cannot be coarsened (odd or < 32 cells) cannot be verified: SolverError too.
   double max_curvature_h = 1.0;
-  // Every marker at least this far (in h) inside the box's faces. Measured (test
-  // CurveNearABoxFaceIsAccurateOrRefused): the error of phi is that of a centred curve down to
+  // Every marker at least this far (in h) inside the box's faces. Measured (test BoxFaceCheck.
+  // FastIimIsAccurateNearAFaceOrRefuses): the error of phi is that of a centred curve down to
   // 0.75 h from a face; once the curve passes between the last cell centres and the face
   // (< 0.5 h), whose ghost values the face's condition sets, it is O(1) (0.25 at 0.3 h from a
   // Neumann face) and GMRES still converges. Twice that limit, as in 3D.

@@ -73,9 +73,11 @@ std::vector<std::string> InterfaceExampleNames();
 
 // Samples the problem on the grid for the given curve (markers on the exact curve): f from the
 // region of each grid point (curve.Contains), w and v at the markers from the exact solution,
-// Dirichlet data on all four sides from the exact phi of the region there.
+// side data from the exact phi of the region there: values on Dirichlet sides (all four by
+// default), outward normal derivatives on Neumann ones.
 InterfaceProblem SampleInterfaceProblem(const InterfaceExample& example, const Grid2D& grid,
-                                        const ClosedCurve& curve);
+                                        const ClosedCurve& curve,
+                                        const PoissonBoundaries& bc = PoissonBoundaries{});
 // Exact phi at every grid point (region by curve.Contains).
 std::vector<double> ExactSolution(const InterfaceExample& example, const Grid2D& grid,
                                   const ClosedCurve& curve);
