@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 
 #include "ehd_capsule/electric/interface_examples_3d.h"
@@ -26,6 +27,22 @@ struct Errors {
   double phi = 0, g = 0, dn_plus = 0, traction = 0, traction_scale = 0, grid_field = 0;
   int iterations = 0;
 };
+
+// Max |phi - exact| over the grid's nodes; exact(p, outside) is the exact potential on the side
+// the solver classified the node on.
+double MaxNodeError(const Grid3D& grid, const FastIimSolver3D& solver,
+                    const std::vector<double>& phi,
+                    const std::function<double(const Eigen::Vector3d&, bool outside)>& exact) {
+  double err = 0;
+  for (int k = 0; k < grid.nz; ++k)
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i) {
+        const std::size_t c = grid.index(i, j, k);
+        const Eigen::Vector3d p(grid.x(i), grid.y(j), grid.z(k));
+        err = std::max(err, std::abs(phi[c] - exact(p, solver.classification().side[c] > 0)));
+      }
+  return err;
+}
 
 // Sphere of radius R in E along z: phi^- = -A E z, phi^+ = -E z + B E R^3 z / r^3,
 // A = 3 s^+/(s^- + 2 s^+), B = (s^- - s^+)/(s^- + 2 s^+).
@@ -57,14 +74,9 @@ Errors SphereInField(int n, int subdivisions, double sigma_minus, double sigma_p
   const InterfaceSolveReport report = solver.Solve(mesh, problem, g, phi);
   Errors out;
   out.iterations = report.iterations;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const std::size_t c = grid.index(i, j, k);
-        const double x = grid.x(i), y = grid.y(j), z = grid.z(k);
-        const double exact = solver.classification().side[c] > 0 ? outer(x, y, z) : -a * e * z;
-        out.phi = std::max(out.phi, std::abs(phi[c] - exact));
-      }
+  out.phi = MaxNodeError(grid, solver, phi, [&](const Eigen::Vector3d& p, bool outside) {
+    return outside ? outer(p.x(), p.y(), p.z()) : -a * e * p.z();
+  });
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     const Eigen::Vector3d p = mesh.vertices().col(v);
     const double cos_theta = p.z() / p.norm();
@@ -167,14 +179,9 @@ Errors SharedExample(const std::string& name, int n, double sigma_minus, double 
   const InterfaceSolveReport report = solver.Solve(mesh, problem, g, phi);
   Errors out;
   out.iterations = report.iterations;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const std::size_t c = grid.index(i, j, k);
-        const Eigen::Vector3d p(grid.x(i), grid.y(j), grid.z(k));
-        const double exact = solver.classification().side[c] > 0 ? e.phi_plus(p) : e.phi_minus(p);
-        out.phi = std::max(out.phi, std::abs(phi[c] - exact));
-      }
+  out.phi = MaxNodeError(grid, solver, phi, [&](const Eigen::Vector3d& p, bool outside) {
+    return outside ? e.phi_plus(p) : e.phi_minus(p);
+  });
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     const Eigen::Vector3d x = mesh.vertices().col(v);
     out.g = std::max(out.g, std::abs(g[v] - (e.grad_plus(x) - e.grad_minus(x)).dot(e.normal(x))));
@@ -354,16 +361,9 @@ double ErrorNearTheFace(double d, double min_face_distance_h, std::string* refus
     if (refusal) *refusal = err.what();
     return -1.0;
   }
-  double err = 0;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const std::size_t c = grid.index(i, j, k);
-        const Eigen::Vector3d p(grid.x(i), grid.y(j), grid.z(k));
-        const double exact = solver.classification().side[c] > 0 ? e.phi_plus(p) : e.phi_minus(p);
-        err = std::max(err, std::abs(phi[c] - exact));
-      }
-  return err;
+  return MaxNodeError(grid, solver, phi, [&](const Eigen::Vector3d& p, bool outside) {
+    return outside ? e.phi_plus(p) : e.phi_minus(p);
+  });
 }
 
 TEST(FastIimSolver3D, SurfaceNearABoxFaceIsAccurateOrRefused) {
