@@ -12,16 +12,17 @@ LatticeUnits DeriveLatticeUnits(const Scene& s) {
   u.half_width = 0.5 * s.N;
   u.ny = s.N;
   u.nx = s.N;
-  if (s.dimension == 3 && s.geometry.half_length > 0) {
+  if (s.dimension == 3 && s.geometry.half_length > 0) {  // N itself is checked by the scene
     u.nx = static_cast<int>(std::lround(s.N * s.geometry.half_length / s.geometry.half_width));
+    if (u.nx < 16 || u.nx > 4096) {
+      throw SceneError(
+          "scene " + s.name + ": geometry.half_length = " + std::to_string(s.geometry.half_length) +
+          " gives " + std::to_string(u.nx) + " cells along x and z at N = " + std::to_string(s.N) +
+          " (half_width = " + std::to_string(s.geometry.half_width) +
+          "); the grid needs 16 to 4096");
+    }
   }
   u.nz = s.dimension == 3 ? u.nx : 1;
-  if (u.nx < 16 || u.nx > 4096) {
-    throw SceneError(
-        "scene " + s.name + ": geometry.half_length = " + std::to_string(s.geometry.half_length) +
-        " gives " + std::to_string(u.nx) + " cells along x and z at N = " + std::to_string(s.N) +
-        " (half_width = " + std::to_string(s.geometry.half_width) + "); the grid needs 16 to 4096");
-  }
   u.radius = u.half_width / s.geometry.half_width;
   // membrane_substeps n refines the time step at fixed h: nu -> nu / n (and k -> k / n through
   // k = Re nu / a^2), i.e. tau -> 1/2 + (tau - 1/2) / n.
