@@ -1,72 +1,161 @@
-// Stage 1 of the coupled step: the electric potential by the fast IIM (warm-started) and the
-// interfacial force F_E = [M_E] . n at the markers (song2019 eq. (148)).
-//
-// Departure from the text: the potential may be re-solved less often than every step
-// (numerics.electric_every, numerics.electric_move_tolerance), reusing F_E at the (material)
-// markers in between.
+// The electric stage (coupling/stages/electric_stage.h).
+#include "ehd_capsule/coupling/stages/electric_stage.h"
+
 #include <algorithm>
 #include <sstream>
 
-#include "ehd_capsule/coupling/capsule_stages_2d.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
+#include "ehd_capsule/electric/leaky_dielectric_solver_3d.h"
 
 namespace ehd {
-ElectricStage2D::ElectricStage2D(const Scene& scene, const LatticeUnits& units, const Grid2D& grid,
-                                 MembraneMarkers2D& body)
-    : scene_(scene), body_(body) {
-  solver_ = std::make_unique<LeakyDielectricSolver>(grid, units.sigma_minus, units.sigma_plus,
-                                                    units.eps_minus, units.eps_plus);
+
+template <int D>
+ElectricStage<D>::ElectricStage(const Scene& scene, const LatticeUnits& units, const Grid<D>& grid,
+                                StepData<D>& data)
+    : scene_(scene),
+      data_(data),
+      body_(data.bodies.front()),
+      source_(data.bodies.front().AddForceSource("electric")) {
+  if (data.bodies.size() != 1) {
+    throw SceneError("scene " + scene.name + ": the electric field takes one body (" +
+                     std::to_string(data.bodies.size()) + " in the scene)");
+  }
+  solver_ = std::make_unique<typename DimensionTraits<D>::Electric>(
+      grid, units.sigma_minus, units.sigma_plus, units.eps_minus, units.eps_plus);
+  if constexpr (D == 2) {
+    data.on_points_resampled.push_back(
+        [this](int, const typename StepData<D>::Resample& resample) { Resampled(resample); });
+  }
 }
 
-ElectricStage2D::~ElectricStage2D() = default;
+template <int D>
+ElectricStage<D>::~ElectricStage() = default;
 
-std::string ElectricStage2D::Describe() const {
+template <int D>
+std::string ElectricStage<D>::Describe() const {
   std::ostringstream out;
-  out << "fast IIM leaky dielectric, sigma-/sigma+ = " << scene_.sigma_r
-      << ", eps-/eps+ = " << scene_.eps_r << ", E_inf = (0, -" << body_.field << "), solved every "
-      << scene_.numerics.electric_every << " step(s)";
+  const double field = data_.controls.field;
+  if constexpr (D == 2) {
+    out << "fast IIM leaky dielectric, sigma-/sigma+ = " << scene_.sigma_r
+        << ", eps-/eps+ = " << scene_.eps_r << ", E_inf = (0, -" << field << "), solved every "
+        << scene_.numerics.electric_every << " step(s)";
+  } else {
+    out << "3D fast IIM leaky dielectric, sigma-/sigma+ = " << scene_.sigma_r
+        << ", eps-/eps+ = " << scene_.eps_r << ", E_inf = (0, 0, -" << field
+        << ") (phi = E z on the z faces, Neumann x, y: song2019 ch. 6), solved every "
+        << scene_.numerics.electric_every << " step(s)";
+  }
   if (scene_.numerics.electric_move_tolerance > 0) {
     out << " or after a move > " << scene_.numerics.electric_move_tolerance << " h";
+    if (D == 3 && scene_.numerics.electric_shape_tolerance > 0) {
+      out << " that takes the surface more than " << scene_.numerics.electric_shape_tolerance
+          << " h off the solved one (smaller moves re-interpolate the solved traction)";
+    }
   }
-  out << ", F_E = [M_E].n";
+  out << (D == 2 ? ", F_E = [M_E].n" : ", force [M_E].n A_i per vertex");
   return out.str();
 }
 
-void ElectricStage2D::Reset() {
-  const int markers = static_cast<int>(body_.X.cols());
-  body_.electric_density.setZero(2, markers);
-  solver_->set_jump_normal_derivative(std::vector<double>(markers, 0.0));
+template <int D>
+void ElectricStage<D>::Reset() {
+  const int n = body_.size();
+  source_.load.setZero(D, n);
+  source_.traction.setZero(D, n);
+  if constexpr (D == 2) {
+    solver_->set_jump_normal_derivative(std::vector<double>(n, 0.0));
+  } else {
+    solver_->set_warm_start(LeakyDielectricSolver3D::WarmStart());
+    solved_positions_.resize(3, 0);
+    solved_traction_.resize(3, 0);
+    projector_.reset();
+  }
   last_solve_step_ = -1;
   solved_field_ = -1.0;
 }
 
-const std::vector<double>& ElectricStage2D::potential() const { return solver_->potential(); }
+template <int D>
+const std::vector<double>& ElectricStage<D>::potential() const {
+  return solver_->potential();
+}
 
-void ElectricStage2D::Run(long step) {
-  SimulationState& state = *body_.state;
+template <int D>
+bool ElectricStage<D>::ReinterpolateTraction(double tolerance) {
+  if constexpr (D == 3) {
+    const TriangleMesh& mesh = body_.shape.mesh;
+    if (!projector_) {
+      TriangleMesh solved = mesh;
+      solved.SetVertices(solved_positions_);
+      projector_ = std::make_unique<SurfaceProjector>(solved, 1.0);
+    }
+    const Eigen::Matrix3Xd& x = mesh.vertices();
+    // The feet first, stopping at the first vertex off the solved surface: a shape still
+    // changing fails at once and costs little beyond the solve it triggers.
+    feet_.resize(x.cols());
+    for (int v = 0; v < x.cols(); ++v) {
+      feet_[v] = projector_->Closest(x.col(v));
+      if (feet_[v].distance > tolerance) return false;
+    }
+    const auto& triangles = mesh.triangles();
+    const SurfaceGeometry geometry = MeasureSurface(mesh);
+    for (int v = 0; v < x.cols(); ++v) {
+      const SurfacePoint& foot = feet_[v];
+      const auto& t = triangles[foot.triangle];
+      const Eigen::Vector3d traction = foot.barycentric(0) * solved_traction_.col(t[0]) +
+                                       foot.barycentric(1) * solved_traction_.col(t[1]) +
+                                       foot.barycentric(2) * solved_traction_.col(t[2]);
+      source_.traction.col(v) = traction;
+      source_.load.col(v) = traction * geometry.vertex_area[v];
+    }
+    return true;
+  } else {
+    (void)tolerance;
+    return false;  // 2D: no re-interpolation (numerics.electric_shape_tolerance is 3D only)
+  }
+}
+
+template <int D>
+void ElectricStage<D>::Run(long step) {
+  SimulationState& state = *data_.state;
   state.gmres_iterations = 0;
-  const int markers = static_cast<int>(body_.X.cols());
-  if (!(body_.field > 0.0)) {
-    body_.electric_density.setZero(2, markers);
+  const int n = body_.size();
+  const double field = data_.controls.field;
+  if (!(field > 0.0)) {
+    source_.load.setZero(D, n);
+    source_.traction.setZero(D, n);
     solved_field_ = 0.0;
     return;
   }
-  bool solve = last_solve_step_ < 0 || solved_field_ != body_.field ||
+  bool solve = last_solve_step_ < 0 || solved_field_ != field ||
                step - last_solve_step_ >= scene_.numerics.electric_every;
   if (!solve && scene_.numerics.electric_move_tolerance > 0.0) {
-    // Largest marker displacement since the last solve (no temporary: this runs every step).
+    // Largest point displacement since the last solve (no temporary: this runs every step).
+    const PointsOf<D>& x = body_.positions();
     double moved2 = 0.0;
-    for (int k = 0; k < markers; ++k) {
-      moved2 = std::max(moved2, (body_.X.col(k) - markers_at_last_solve_.col(k)).squaredNorm());
+    for (int k = 0; k < n; ++k) {
+      moved2 = std::max(moved2, (x.col(k) - positions_at_last_solve_.col(k)).squaredNorm());
     }
     const double tol = scene_.numerics.electric_move_tolerance;
-    solve = moved2 > tol * tol;
+    const bool moved = moved2 > tol * tol;
+    if (moved && D == 3 && scene_.numerics.electric_shape_tolerance > 0.0) {
+      // The vertices moved; if the surface did not (tank-treading along a steady shape), the
+      // solved traction field, re-interpolated at the moved vertices, is still the answer.
+      // (If the surface did move, the solve below replaces the re-interpolated forces.)
+      if (ReinterpolateTraction(scene_.numerics.electric_shape_tolerance)) {
+        positions_at_last_solve_ = x;
+        return;
+      }
+    }
+    solve = moved;
   }
   if (!solve) return;
-  solver_->SetAppliedField(body_.field);
+  solver_->SetAppliedField(field);
   InterfaceSolveReport report;
   try {
-    report = solver_->Solve(body_.curve, static_cast<double>(step));
+    if constexpr (D == 2) {
+      report = solver_->Solve(body_.shape.curve, static_cast<double>(step));
+    } else {
+      report = solver_->Solve(body_.shape.mesh, static_cast<double>(step));
+    }
   } catch (const std::exception& e) {
     FailStep(step, std::string("electric potential solve failed: ") + e.what());
   }
@@ -76,46 +165,98 @@ void ElectricStage2D::Run(long step) {
     FailStep(step, "GMRES did not converge (residual " + FormatValue(report.residual) + " after " +
                        std::to_string(report.iterations) + " iterations)");
   }
-  body_.electric_density = solver_->force();
-  markers_at_last_solve_ = body_.X;
-  last_solve_step_ = step;
-  solved_field_ = body_.field;
-}
-
-void ElectricStage2D::Respaced(const std::function<void(std::vector<double>&)>& resample) {
-  std::vector<double> g = solver_->jump_normal_derivative();
-  if (static_cast<long>(g.size()) == body_.X.cols()) {
-    resample(g);
-    solver_->set_jump_normal_derivative(g);
+  source_.load = solver_->force();
+  if constexpr (D == 2) {
+    source_.traction = source_.load;  // the 2D force is per unit length already
+  } else {
+    source_.traction = solver_->traction();
   }
-  last_solve_step_ = -1;  // F_E at the old markers no longer applies
+  positions_at_last_solve_ = body_.positions();
+  last_solve_step_ = step;
+  solved_field_ = field;
+  if (D == 3 && scene_.numerics.electric_shape_tolerance > 0.0) {
+    solved_positions_ = body_.positions();
+    solved_traction_ = source_.traction;
+    projector_.reset();
+  }
 }
 
-void ElectricStage2D::Save(CheckpointWriter& w) const {
-  const LeakyDielectricSolver::WarmStartHistory& h = solver_->warm_start_history();
+template <int D>
+void ElectricStage<D>::Resampled(const typename StepData<D>::Resample& resample) {
+  if constexpr (D == 2) {
+    std::vector<double> g = solver_->jump_normal_derivative();
+    if (static_cast<int>(g.size()) == body_.size()) {
+      resample(g);
+      solver_->set_jump_normal_derivative(g);
+    }
+  }
+  last_solve_step_ = -1;  // the force at the old points no longer applies
+}
+
+// Checkpoint section: the applied field, the warm start (G and its time history), the force,
+// the points at the last solve and its step and field; 3D also the traction and the solved
+// surface.
+template <int D>
+void ElectricStage<D>::Save(CheckpointWriter& w) const {
   w.Pod(solver_->applied_field());
-  w.Vec(solver_->jump_normal_derivative());
-  w.Vec(h.g_previous);
-  w.Pod(h.time_previous);
-  w.Pod(h.time_last);
-  w.Mat(body_.electric_density);
-  w.Mat(markers_at_last_solve_);
+  if constexpr (D == 2) {
+    const LeakyDielectricSolver::WarmStartHistory& h = solver_->warm_start_history();
+    w.Vec(solver_->jump_normal_derivative());
+    w.Vec(h.g_previous);
+    w.Pod(h.time_previous);
+    w.Pod(h.time_last);
+    w.Mat(source_.load);
+  } else {
+    const LeakyDielectricSolver3D::WarmStart& h = solver_->warm_start();
+    w.Vec(h.g);
+    w.Vec(h.g_previous);
+    w.Pod(h.time_previous);
+    w.Pod(h.time_last);
+    w.Mat(source_.load);
+    w.Mat(source_.traction);
+  }
+  w.Mat(positions_at_last_solve_);
   w.Pod(last_solve_step_);
   w.Pod(solved_field_);
+  if constexpr (D == 3) {
+    w.Mat(solved_positions_);
+    w.Mat(solved_traction_);
+  }
 }
 
-void ElectricStage2D::Restore(CheckpointReader& r) {
+template <int D>
+void ElectricStage<D>::Restore(CheckpointReader& r) {
   solver_->SetAppliedField(r.Pod<double>());
-  solver_->set_jump_normal_derivative(r.Vec());
-  LeakyDielectricSolver::WarmStartHistory h;
-  h.g_previous = r.Vec();
-  h.time_previous = r.Pod<double>();
-  h.time_last = r.Pod<double>();
-  solver_->set_warm_start_history(h);
-  body_.electric_density = r.Mat<2>();
-  markers_at_last_solve_ = r.Mat<2>();
+  if constexpr (D == 2) {
+    solver_->set_jump_normal_derivative(r.Vec());
+    LeakyDielectricSolver::WarmStartHistory h;
+    h.g_previous = r.Vec();
+    h.time_previous = r.Pod<double>();
+    h.time_last = r.Pod<double>();
+    solver_->set_warm_start_history(h);
+    source_.load = r.Mat<2>();
+    source_.traction = source_.load;
+  } else {
+    LeakyDielectricSolver3D::WarmStart h;
+    h.g = r.Vec();
+    h.g_previous = r.Vec();
+    h.time_previous = r.Pod<double>();
+    h.time_last = r.Pod<double>();
+    solver_->set_warm_start(h);
+    source_.load = r.Mat<3>();
+    source_.traction = r.Mat<3>();
+  }
+  positions_at_last_solve_ = r.Mat<D>();
   last_solve_step_ = r.Pod<long>();
   solved_field_ = r.Pod<double>();
+  if constexpr (D == 3) {
+    solved_positions_ = r.Mat<3>();
+    solved_traction_ = r.Mat<3>();
+    projector_.reset();  // rebuilt from solved_positions_ when needed
+  }
 }
+
+template class ElectricStage<2>;
+template class ElectricStage<3>;
 
 }  // namespace ehd

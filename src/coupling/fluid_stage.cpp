@@ -1,75 +1,110 @@
-// Stage 4 of the coupled step: one D2Q9 MRT lattice Boltzmann step with the spread force
-// (song2019 eqs. (97), (107)-(108)), then the fluid watchdogs (non-finite velocity, lattice Mach).
-#include <cmath>
+// The fluid stage (coupling/stages/fluid_stage.h).
+#include "ehd_capsule/coupling/stages/fluid_stage.h"
+
 #include <sstream>
 
-#include "ehd_capsule/coupling/capsule_stages_2d.h"
-
 namespace ehd {
-FluidStage2D::FluidStage2D(const Scene& scene, const LatticeUnits& units, MembraneMarkers2D& body)
-    : scene_(scene), units_(units), body_(body) {
+
+template <int D>
+FluidStage<D>::FluidStage(const Scene& scene, const LatticeUnits& units, StepData<D>& data)
+    : scene_(scene), units_(units), data_(data) {
   LbmParameters p;
-  p.nx = p.ny = scene.N;
   p.viscosity = units.viscosity;
   p.threads = scene.numerics.threads;
   p.boundary = scene.has_shear() ? FluidBoundary::kShearWalls : FluidBoundary::kClosedBox;
-  lattice_ = std::make_unique<LatticeBoltzmann2D>(p);
+  if constexpr (D == 2) {
+    p.nx = p.ny = scene.N;  // the relaxation rates of song2019 sec. 3.1.1 (LbmParameters)
+  } else {
+    p.nx = units.nx;
+    p.ny = units.ny;
+    p.nz = units.nz;
+    // song2019 sec. 3.1.2: the heat fluxes (and the bulk rate) follow the shear rate, the
+    // higher-order moments relax at 1.8.
+    const double s_nu = 1.0 / (3.0 * units.viscosity + 0.5);
+    p.s_e = s_nu;
+    p.s_q = s_nu;
+    p.s_epsilon = 1.8;
+    p.s_pi = 1.8;
+    p.s_m = 1.8;
+  }
+  lattice_ = std::make_unique<FluidOf<D>>(p);
 }
 
-std::string FluidStage2D::Describe() const {
+template <int D>
+std::string FluidStage<D>::Describe() const {
   std::ostringstream out;
-  out << "D2Q9 MRT LBM " << scene_.N << "x" << scene_.N << ", tau = " << units_.tau << ", "
-      << (scene_.has_shear() ? "moving shear walls" : "closed box at rest");
+  if constexpr (D == 2) {
+    out << "D2Q9 MRT LBM " << scene_.N << "x" << scene_.N << ", tau = " << units_.tau << ", "
+        << (scene_.has_shear() ? "moving shear walls" : "closed box at rest");
+  } else {
+    out << "D3Q19 MRT LBM ";
+    if (units_.nx == units_.ny) {
+      out << units_.ny << "^3";
+    } else {
+      out << units_.nx << " x " << units_.ny << " x " << units_.nz;
+    }
+    out << ", tau = " << units_.tau << " (s_e = s_q = s_nu, s_eps = s_pi = s_m = 1.8), "
+        << (scene_.has_shear() ? "moving shear walls, periodic x and z" : "closed box at rest");
+  }
   return out.str();
 }
 
-void FluidStage2D::Reset() {
+template <int D>
+void FluidStage<D>::Reset() {
   lattice_->ClearViscosityField();  // the initial state has the outer viscosity everywhere
   if (scene_.has_shear()) {
-    lattice_->InitializeShear(body_.shear_rate);
+    lattice_->InitializeShear(data_.controls.shear_rate);
   } else {
     lattice_->InitializeAtRest();
   }
   lattice_->ClearForce();
 }
 
-void FluidStage2D::ApplyShearRate() {
-  lattice_->SetWallVelocities(-body_.shear_rate * units_.half_width,
-                              body_.shear_rate * units_.half_width);
+template <int D>
+void FluidStage<D>::ApplyShearRate() {
+  lattice_->SetWallVelocities(-data_.controls.shear_rate * units_.half_width,
+                              data_.controls.shear_rate * units_.half_width);
 }
 
-void FluidStage2D::Run(long step) {
+template <int D>
+void FluidStage<D>::Run(long step) {
   lattice_->Step();
-  SimulationState& state = *body_.state;
-  state.max_mach = MaxLatticeMach(step, {&lattice_->ux(), &lattice_->uy()});
+  SimulationState& state = *data_.state;
+  const auto u = VelocityOf<D>(*lattice_);
+  state.max_mach =
+      MaxLatticeMach(step, std::vector<const std::vector<double>*>(u.begin(), u.end()));
   if (state.max_mach > scene_.numerics.max_mach) {
-    // Name the force behind the fast flow, so the user knows which number to lower.
-    const double membrane_max = body_.membrane_density.colwise().norm().maxCoeff();
-    std::string forces = "; largest force density: membrane " + FormatValue(membrane_max);
-    if (body_.electric_density.size() > 0) {
-      forces += ", electric " + FormatValue(body_.electric_density.colwise().norm().maxCoeff()) +
-                " (Ca_E = " + FormatValue(state.ca_e) + ")";
+    // Name the forces behind the fast flow, so the user knows which number to lower.
+    std::string forces;
+    for (const Body<D>& body : data_.bodies) {
+      forces += std::string(forces.empty() ? "" : "; ") + body.DescribeLargestLoads();
     }
-    FailStep(step, "lattice Mach number " + FormatValue(state.max_mach) + " > " +
-                       FormatValue(scene_.numerics.max_mach) + " (numerics.max_mach)" + forces);
+    FailStep(step,
+             "lattice Mach number " + FormatValue(state.max_mach) + " > " +
+                 FormatValue(scene_.numerics.max_mach) + " (numerics.max_mach); largest " +
+                 (D == 2 ? "force density" : "force per vertex") + ": " + forces +
+                 (data_.controls.field > 0 ? " (Ca_E = " + FormatValue(state.ca_e) + ")" : ""));
   }
 }
 
-void FluidStage2D::Save(CheckpointWriter& w) const {
+template <int D>
+void FluidStage<D>::Save(CheckpointWriter& w) const {
   w.Pod(lattice_->step());
   w.Vec(lattice_->populations());
-  w.Vec(lattice_->force_x());
-  w.Vec(lattice_->force_y());
+  for (int a = 0; a < D; ++a) w.Vec(lattice_->force(a));
 }
 
-void FluidStage2D::Restore(CheckpointReader& r) {
+template <int D>
+void FluidStage<D>::Restore(CheckpointReader& r) {
   const long step = r.Pod<long>();
   const std::vector<double> f = r.Vec();
-  lattice_->force_x() = r.Vec();
-  lattice_->force_y() = r.Vec();
+  for (int a = 0; a < D; ++a) lattice_->force(a) = r.Vec();
   lattice_->SetPopulations(f);
   lattice_->SetStep(step);
   if (scene_.has_shear()) ApplyShearRate();
 }
+
+template class FluidStage<2>;
+template class FluidStage<3>;
 
 }  // namespace ehd

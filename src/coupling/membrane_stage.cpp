@@ -1,86 +1,306 @@
-// Stage 2 of the coupled step: the membrane force density at the markers (drop: tension;
-// capsule: Hookean + Kelvin-Voigt + bending, song2019 eqs. (110)-(115)).
+// The membrane stage (coupling/stages/membrane_stage.h): one MembraneMechanics per body, its
+// dimension's laws, writing the body's membrane force sources.
+#include "ehd_capsule/coupling/stages/membrane_stage.h"
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
-#include "ehd_capsule/coupling/capsule_stages_2d.h"
+#include "ehd_capsule/membrane/helfrich_bending.h"
+#include "ehd_capsule/membrane/membrane_model.h"
+#include "ehd_capsule/membrane/membrane_stability.h"
+#include "ehd_capsule/membrane/surface_elasticity.h"
 
 namespace ehd {
-MembraneStage2D::MembraneStage2D(const Scene& scene, const LatticeUnits& units,
-                                 MembraneMarkers2D& body)
-    : scene_(scene), body_(body) {
-  MembraneParameters& mp = parameters_;
-  if (scene.membrane == MembraneKind::kDrop) {
-    mp.tension = units.tension;
-  } else {
-    mp.shear_modulus = units.tension;
-    mp.tension = scene.prestress * units.tension;  // tau = tau_p + E_s (lambda - 1)
-    mp.membrane_viscosity = units.membrane_viscosity;
-    mp.bending_modulus = units.bending_modulus;
+namespace {
+
+// The explicit limit applies to AB2 as estimated; forward Euler allows twice the step
+// (membrane_stability.h). The lattice step is 1; numerics.membrane_substeps = n divides the
+// physical step by n (units.h), which multiplies the limit by n.
+double StableLatticeStep(const Scene& scene, const MembraneStabilityLimits& limits) {
+  return limits.min_dt() *
+         (scene.numerics.integrator == MarkerTimeScheme::kForwardEuler ? 2.0 : 1.0);
+}
+
+int SubstepsNeeded(const Scene& scene, double dt_stable) {
+  return static_cast<int>(std::ceil(scene.numerics.membrane_substeps / dt_stable));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// 2D: MembraneModel on the marker curve (tension, Hookean, Kelvin-Voigt, bending in one density).
+template <>
+struct MembraneMechanics<2> {
+  MembraneMechanics(const Scene& scene, const LatticeUnits& units, Body<2>& body)
+      : scene_(scene), body_(body), source_(body.AddForceSource("membrane")) {
+    MembraneParameters& mp = parameters_;
+    if (scene.membrane == MembraneKind::kDrop) {
+      mp.tension = units.tension;
+    } else {
+      mp.shear_modulus = units.tension;
+      mp.tension = scene.prestress * units.tension;  // tau = tau_p + E_s (lambda - 1)
+      mp.membrane_viscosity = units.membrane_viscosity;
+      mp.bending_modulus = units.bending_modulus;
+    }
+    const ClosedCurve reference(body.initial);
+    model_ = std::make_unique<MembraneModel>(mp, reference);
+    const MembraneStabilityLimits limits = model_->Stability(reference, units.viscosity);
+    const double dt_stable = StableLatticeStep(scene, limits);
+    if (dt_stable < 1.0) {
+      const char* term = limits.bending_dt == limits.min_dt()   ? "bending (E_b)"
+                         : limits.elastic_dt == limits.min_dt() ? "elasticity (Ca)"
+                                                                : "tension (Ca)";
+      throw SceneError("scene " + scene.name + ": membrane explicit limit exceeded by the " + term +
+                       " term: stable lattice dt " + FormatValue(dt_stable) + " < 1 (" +
+                       model_->Describe() + "); set numerics.membrane_substeps >= " +
+                       std::to_string(SubstepsNeeded(scene, dt_stable)) + " (now " +
+                       std::to_string(scene.numerics.membrane_substeps) + ")");
+    }
+    viscous_number_ = limits.viscous_number;
   }
-  const ClosedCurve reference(body.initial);
-  model_ = std::make_unique<MembraneModel>(mp, reference);
-  // Explicit membrane limit at the initial shape (membrane_stability.h: the estimate is safe for
-  // AB2; forward Euler allows twice the step). The lattice step is 1; numerics.membrane_substeps
-  // = n divides the physical step by n (units.h), which multiplies the limit by n.
-  const MembraneStabilityLimits limits = model_->Stability(reference, units.viscosity);
-  const double dt_stable =
-      limits.min_dt() * (scene.numerics.integrator == MarkerTimeScheme::kForwardEuler ? 2.0 : 1.0);
-  if (dt_stable < 1.0) {
-    const int need = static_cast<int>(std::ceil(scene.numerics.membrane_substeps / dt_stable));
-    const char* term = limits.bending_dt == limits.min_dt()   ? "bending (E_b)"
-                       : limits.elastic_dt == limits.min_dt() ? "elasticity (Ca)"
-                                                              : "tension (Ca)";
-    throw SceneError("scene " + scene.name + ": membrane explicit limit exceeded by the " + term +
-                     " term: stable lattice dt " + FormatValue(dt_stable) + " < 1 (" +
-                     model_->Describe() +
-                     "); set numerics.membrane_substeps >= " + std::to_string(need) + " (now " +
-                     std::to_string(scene.numerics.membrane_substeps) + ")");
+
+  std::string Describe() const {
+    std::ostringstream out;
+    out << model_->Describe();
+    if (scene_.numerics.membrane_substeps > 1) {
+      out << " (time step refined " << scene_.numerics.membrane_substeps << "x)";
+    }
+    if (viscous_number_ >= 0.5) {
+      out << "\nwarning: Kelvin-Voigt stability number " << viscous_number_
+          << " >= 1/2 (explicit membrane viscosity may be unstable; lower eta)";
+    }
+    return out.str();
   }
-  viscous_number_ = limits.viscous_number;
-}
 
-std::string MembraneStage2D::Describe() const {
-  std::ostringstream out;
-  out << model_->Describe();
-  if (scene_.numerics.membrane_substeps > 1) {
-    out << " (time step refined " << scene_.numerics.membrane_substeps << "x)";
+  void Reset() {
+    model_ = std::make_unique<MembraneModel>(parameters_, ClosedCurve(body_.positions()));
+    history_ = 0;
   }
-  if (viscous_number_ >= 0.5) {
-    out << "\nwarning: Kelvin-Voigt stability number " << viscous_number_
-        << " >= 1/2 (explicit membrane viscosity may be unstable; lower eta)";
+
+  void Run(long) {
+    model_->ComputeForce(body_.shape.curve, 1.0, source_.load);
+    previous2_ = previous1_;
+    previous1_ = body_.positions();
+    history_ = std::min(history_ + 1, 2);
   }
-  return out.str();
+
+  // Kelvin-Voigt keeps a stretch history: the markers of the last two force evaluations are
+  // saved and replayed on a fresh model, which rebuilds it bit for bit.
+  void Save(CheckpointWriter& w) const {
+    w.Pod(static_cast<std::int32_t>(history_));
+    w.Mat(previous1_);
+    w.Mat(previous2_);
+  }
+
+  void Restore(CheckpointReader& r) {
+    history_ = r.Pod<std::int32_t>();
+    previous1_ = r.Mat<2>();
+    previous2_ = r.Mat<2>();
+    model_ = std::make_unique<MembraneModel>(parameters_, ClosedCurve(body_.initial));
+    Eigen::Matrix2Xd scratch;
+    if (history_ >= 2) model_->ComputeForce(ClosedCurve(previous2_), 1.0, scratch);
+    if (history_ >= 1) model_->ComputeForce(ClosedCurve(previous1_), 1.0, scratch);
+  }
+
+  std::vector<double> VertexTension() const {
+    throw std::logic_error("MembraneStage: a 2D simulation has no surface mesh");
+  }
+
+  const Scene& scene_;
+  Body<2>& body_;
+  ForceSource<2>& source_;
+  MembraneParameters parameters_;
+  std::unique_ptr<MembraneModel> model_;  // rebuilt by Reset and Restore
+  double viscous_number_ = 0;             // Kelvin-Voigt stability indicator
+  Eigen::Matrix2Xd previous1_, previous2_;
+  int history_ = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// 3D: finite elements on the triangle mesh (+ Helfrich bending), or a drop's surface tension.
+namespace {
+
+SurfaceLaw LawOf(const Scene& s) {
+  switch (s.law) {
+    case SurfaceLawKind::kSkalak:
+      return SurfaceLaw::kSkalak;
+    case SurfaceLawKind::kZeroThickness:
+      return SurfaceLaw::kZeroThickness;
+    case SurfaceLawKind::kNeoHookean:
+      break;
+  }
+  return SurfaceLaw::kNeoHookean;
 }
 
-void MembraneStage2D::Reset() {
-  model_ = std::make_unique<MembraneModel>(parameters_, ClosedCurve(body_.X));
-  history_ = 0;
+}  // namespace
+
+template <>
+struct MembraneMechanics<3> {
+  MembraneMechanics(const Scene& scene, const LatticeUnits& units, Body<3>& body)
+      : body_(body), source_(body.AddForceSource("membrane")), modulus_(units.tension) {
+    const TriangleMesh& mesh = body.shape.mesh;
+    // Vertices farther apart than 2 h leave holes the immersed boundary leaks through (the
+    // 4-point kernel's support is 4 h): refuse the scene, naming the subdivision that closes them
+    // (each level halves the edges).
+    const MeshQuality q = MeasureQuality(mesh);
+    if (q.max_edge > 2.0) {
+      int need = scene.mesh_subdivisions;
+      double edge = q.max_edge;
+      while (edge > 2.0 && need < 6) {
+        edge *= 0.5;
+        ++need;
+      }
+      throw SceneError("scene " + scene.name +
+                       ": the membrane mesh is too coarse for the grid: " + "longest edge " +
+                       FormatValue(q.max_edge) + " h > 2 h (a = " + FormatValue(units.radius) +
+                       " cells); set mesh_subdivisions >= " + std::to_string(need) + " (now " +
+                       std::to_string(scene.mesh_subdivisions) + ")");
+    }
+    if (scene.membrane == MembraneKind::kDrop) {
+      tension_ = units.tension;
+      const MembraneStabilityLimits limits =
+          EstimateMembraneStability(tension_, 0.0, 0.0, 0.0, units.viscosity, 1.0, q.min_edge);
+      const double dt_stable = StableLatticeStep(scene, limits);
+      if (dt_stable < 1.0) {
+        throw SceneError("scene " + scene.name +
+                         ": membrane explicit limit exceeded by the tension (Ca) term: stable "
+                         "lattice dt " +
+                         FormatValue(dt_stable) + " < 1; set numerics.membrane_substeps >= " +
+                         std::to_string(SubstepsNeeded(scene, dt_stable)));
+      }
+      stability_ = "explicit limit dt <= " + FormatValue(dt_stable);
+      return;
+    }
+    SurfaceLawParameters law;
+    law.law = LawOf(scene);
+    law.shear_modulus = units.tension;  // G_s
+    law.area_dilation = scene.law == SurfaceLawKind::kSkalak ? scene.area_dilation : 1.0;
+    elasticity_ = std::make_unique<SurfaceElasticity>(law, mesh);
+    if (scene.E_b > 0.0) {
+      bending_ = std::make_unique<HelfrichBending>(
+          HelfrichParameters{units.bending_modulus, scene.c0 / units.radius});
+      bending_source_ = &body.AddForceSource("bending");
+    }
+    // Explicit limit at the initial shape (membrane_stability.h): a planar membrane mode of
+    // wavenumber k relaxes at S k^(p-1) phi_hat(k h)^2 / (4 mu) in 3D as in 2D, with the
+    // in-plane stiffness S = 4 G_s (neo-Hookean, zero-thickness: tension G_s (4 e_1 + 2 e_2)) or
+    // (2 + 2C) G_s (Skalak), and S = E_B for bending (p = 4); k up to pi / (shortest edge).
+    const double stiffness =
+        units.tension *
+        (scene.law == SurfaceLawKind::kSkalak ? 2.0 + 2.0 * scene.area_dilation : 4.0);
+    const MembraneStabilityLimits limits =
+        EstimateMembraneStability(0.0, stiffness, bending_ ? units.bending_modulus : 0.0, 0.0,
+                                  units.viscosity, 1.0, q.min_edge);
+    const double dt_stable = StableLatticeStep(scene, limits);
+    if (dt_stable < 1.0) {
+      const char* term =
+          limits.bending_dt == limits.min_dt() ? "bending (E_b)" : "elasticity (Ca, C)";
+      throw SceneError("scene " + scene.name + ": membrane explicit limit exceeded by the " + term +
+                       " term: stable lattice dt " + FormatValue(dt_stable) + " < 1 (" +
+                       elasticity_->Describe() + ", shortest edge " + FormatValue(q.min_edge) +
+                       " h); set numerics.membrane_substeps >= " +
+                       std::to_string(SubstepsNeeded(scene, dt_stable)) + " (now " +
+                       std::to_string(scene.numerics.membrane_substeps) + ")");
+    }
+    stability_ = "explicit limit dt <= " + FormatValue(dt_stable);
+  }
+
+  std::string Describe() const {
+    const std::string mesh = "\nmesh: " + MeasureQuality(body_.shape.mesh).Describe();
+    if (!elasticity_) {
+      return "drop: surface tension gamma = " + FormatValue(tension_) +
+             ", force gamma (Delta x)_i A_i (cotangent mean-curvature normal); " + stability_ +
+             mesh;
+    }
+    std::string d = elasticity_->Describe();
+    if (bending_) d += ", " + bending_->Describe();
+    return d + "; " + stability_ + mesh;
+  }
+
+  void Reset() {}
+
+  void Run(long step) {
+    const TriangleMesh& mesh = body_.shape.mesh;
+    if (!elasticity_) {
+      const SurfaceGeometry g = MeasureSurface(mesh);
+      for (int v = 0; v < mesh.vertex_count(); ++v) {
+        source_.load.col(v) = tension_ * g.vertex_area[v] * g.laplace_position.col(v);
+      }
+      return;
+    }
+    try {
+      elasticity_->ComputeForces(mesh.vertices(), source_.load);
+    } catch (const std::exception& e) {
+      FailStep(step, std::string("membrane: ") + e.what());
+    }
+    if (bending_) bending_->ComputeForces(mesh, bending_source_->load);
+  }
+
+  void Save(CheckpointWriter&) const {}  // a function of the vertex positions
+  void Restore(CheckpointReader&) {}
+
+  std::vector<double> VertexTension() const {
+    if (!elasticity_) return std::vector<double>(body_.size(), 1.0);
+    std::vector<double> tension = elasticity_->VertexMeanTension(body_.positions());
+    for (double& t : tension) t /= modulus_;
+    return tension;
+  }
+
+  Body<3>& body_;
+  ForceSource<3>& source_;
+  ForceSource<3>* bending_source_ = nullptr;
+  double modulus_ = 1;                             // units.tension (lattice)
+  std::unique_ptr<SurfaceElasticity> elasticity_;  // capsule
+  std::unique_ptr<HelfrichBending> bending_;       // capsule with E_b > 0
+  double tension_ = 0;                             // drop: surface tension gamma
+  std::string stability_;
+};
+
+// ---------------------------------------------------------------------------------------------
+
+template <int D>
+MembraneStage<D>::MembraneStage(const Scene& scene, const LatticeUnits& units, StepData<D>& data) {
+  for (Body<D>& body : data.bodies) {
+    bodies_.push_back(std::make_unique<MembraneMechanics<D>>(scene, units, body));
+  }
 }
 
-void MembraneStage2D::Run(long) {
-  model_->ComputeForce(body_.curve, 1.0, body_.membrane_density);
-  previous2_ = previous1_;
-  previous1_ = body_.X;
-  history_ = std::min(history_ + 1, 2);
+template <int D>
+MembraneStage<D>::~MembraneStage() = default;
+
+template <int D>
+std::string MembraneStage<D>::Describe() const {
+  return bodies_.front()->Describe();
 }
 
-void MembraneStage2D::Save(CheckpointWriter& w) const {
-  w.Pod(static_cast<std::int32_t>(history_));
-  w.Mat(previous1_);
-  w.Mat(previous2_);
+template <int D>
+void MembraneStage<D>::Reset() {
+  for (auto& b : bodies_) b->Reset();
 }
 
-void MembraneStage2D::Restore(CheckpointReader& r) {
-  history_ = r.Pod<std::int32_t>();
-  previous1_ = r.Mat<2>();
-  previous2_ = r.Mat<2>();
-  // Replay the force evaluations on a fresh model to rebuild its stretch history.
-  model_ = std::make_unique<MembraneModel>(parameters_, ClosedCurve(body_.initial));
-  Eigen::Matrix2Xd scratch;
-  if (history_ >= 2) model_->ComputeForce(ClosedCurve(previous2_), 1.0, scratch);
-  if (history_ >= 1) model_->ComputeForce(ClosedCurve(previous1_), 1.0, scratch);
+template <int D>
+void MembraneStage<D>::Run(long step) {
+  for (auto& b : bodies_) b->Run(step);
 }
+
+template <int D>
+void MembraneStage<D>::Save(CheckpointWriter& w) const {
+  for (const auto& b : bodies_) b->Save(w);
+}
+
+template <int D>
+void MembraneStage<D>::Restore(CheckpointReader& r) {
+  for (auto& b : bodies_) b->Restore(r);
+}
+
+template <int D>
+std::vector<double> MembraneStage<D>::VertexTension(int body) const {
+  return bodies_.at(body)->VertexTension();
+}
+
+template class MembraneStage<2>;
+template class MembraneStage<3>;
 
 }  // namespace ehd

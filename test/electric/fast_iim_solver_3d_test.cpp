@@ -368,10 +368,14 @@ double ErrorNearTheFace(double d, double min_face_distance_h, std::string* refus
 
 TEST(FastIimSolver3D, SurfaceNearABoxFaceIsAccurateOrRefused) {
   // Measured without the check: 5.2e-4 at 6 h, 5.8e-4 at 2 h, 6.0e-4 at 1 h, 5.3e-4 at 0.5 h;
-  // at 0.3 h (the surface between the last node layer and the Neumann face) 0.15, accepted.
+  // at 0.3 h (the surface between the last node layer and the Neumann face) 0.15, accepted, on an
+  // Intel Xeon; on an AMD EPYC (same code, -march=native) the fit-agreement check refuses it
+  // instead (cubic and quadratic fits of phi_n^- 0.61 apart). Either way no accurate answer
+  // exists there: without the face check it is O(1) wrong or refused by chance of another check.
   const double far = ErrorNearTheFace(6.0, 0.0, nullptr);
   EXPECT_LT(far, 1e-3);
-  EXPECT_GT(ErrorNearTheFace(0.3, 0.0, nullptr), 0.05);  // why the check exists
+  const double unchecked = ErrorNearTheFace(0.3, 0.0, nullptr);
+  EXPECT_TRUE(unchecked == -1.0 || unchecked > 0.05) << unchecked;  // why the check exists
   EXPECT_LT(ErrorNearTheFace(1.25, FastIim3DOptions().min_face_distance_h, nullptr), 2.0 * far);
   std::string refusal;
   EXPECT_EQ(ErrorNearTheFace(0.75, FastIim3DOptions().min_face_distance_h, &refusal), -1.0);

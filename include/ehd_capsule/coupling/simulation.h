@@ -1,22 +1,23 @@
-// The coupled electrohydrodynamic time step (song2019 sec. 3.6) of one capsule or drop.
+// The coupled electrohydrodynamic time step (song2019 sec. 3.6) of a scene, in 2D or 3D.
 //
-// One Step at t^n, in lattice units (h = dt = 1), runs the stages built from the scene
-// (capsule_stages_2d.h), in this order:
-//   1. electric: potential by the fast IIM (warm-started), interfacial force F_E = [M_E] . n at
-//      the markers (eq. (148)); solved every `electric_every` steps or when a marker moved more
-//      than `electric_move_tolerance` since the last solve, else reused;
-//   2. membrane: force density (tension for a drop; Hookean + Kelvin-Voigt + bending, eqs.
-//      (110)-(115), for a capsule);
-//   3. spread: (f_membrane + F_E) dl to the grid (eq. (106)); with V != 1 the viscosity field
-//      mu(x) = mu_c + (mu_a - mu_c) H(d(x)) (eqs. (117)-(118)) is refreshed from the markers;
+// One Step at t^n, in lattice units (h = dt = 1), applies the queued changes (Ca, Ca_E), runs the
+// stages built from the scene (coupled_step.h; one class template per stage over the dimension,
+// coupling/stages/), in this order:
+//   1. electric: potential by the fast IIM (warm-started), the Maxwell-stress force source
+//      [M_E] . n at the points (eq. (148)); solved every `electric_every` steps or when a point
+//      moved more than `electric_move_tolerance` since the last solve, else reused;
+//   2. membrane: the membrane's force sources (2D: tension for a drop; Hookean + Kelvin-Voigt +
+//      bending, eqs. (110)-(115), for a capsule; 3D: finite-element elasticity + Helfrich
+//      bending, or a drop's tension);
+//   3. spread: each body's sources summed (Body::SumLoads) and spread to the grid (eq. (106));
+//      with V != 1 (2D) the viscosity field mu(x) = mu_c + (mu_a - mu_c) H(d(x)) (eqs.
+//      (117)-(118)) is refreshed from the markers;
 //   4. fluid: one LBM step (eqs. (97), (107)-(108));
 //   5. markers: interpolate u^{n+1} (eq. (104)) and move them (eq. (105), or AB2);
-//   6. diagnostics: shape, tank-treading phase, the public state.
-// A scene with dimension: 3 builds the 3D stages instead (capsule_stages_3d.h: triangulated
-// capsule, D3Q19 fluid; no field yet).
-// Only what the scene needs is built: no electric stage nor its buffers without a field, no
-// bending term with E_b = 0, no viscosity stage with V = 1. The printed pipeline and the
-// checkpoint are assembled from the stages that were built.
+//   6. diagnostics: shape, tank-treading phase, the public state;
+// then advances the clock. Only what the scene needs is built: no electric stage nor its buffers
+// without a field, no bending term with E_b = 0, no viscosity stage with V = 1. The printed
+// pipeline and the checkpoint are assembled from the stages that were built.
 // Watchdogs throw SimulationError naming the step and the quantity: a non-finite value, lattice
 // Mach above numerics.max_mach, GMRES not converged, |A/A0 - 1| above numerics.area_drift_limit,
 // a marker closer than 2h to a wall.
@@ -36,6 +37,8 @@
 #include "ehd_capsule/scene/units.h"
 
 namespace ehd {
+
+class CoupledStep;
 
 class Simulation {
  public:
@@ -101,13 +104,12 @@ class Simulation {
   void Restore(const std::string& path);
 
  private:
-  struct Impl;
   Scene scene_;
   LatticeUnits units_;
-  Grid2D grid_;
-  Grid3D grid3d_;
   SimulationState state_;
-  std::unique_ptr<Impl> impl_;  // last: its stages refer to the members above
+  std::unique_ptr<CoupledStep> coupled_;  // after the members above: its stages refer to them
+  // Changes queued by SetCa / SetCaE for the next Step (-1: none).
+  double pending_ca_ = -1.0, pending_ca_e_ = -1.0;
 };
 
 }  // namespace ehd

@@ -4,8 +4,9 @@
 // construction) the printed pipeline and the checkpoint: each stage describes itself and saves
 // and restores its own state in a named checkpoint section.
 //
-// Stages share the data of the body they act on (2D: MembraneMarkers2D) by reference; the
-// interface itself names no dimension, so 3D stages implement the same one.
+// Stages are class templates over the dimension (coupling/stages/), sharing the bodies they act
+// on (StepData<D>, coupling/body.h) by reference; the interface itself names no dimension. The
+// contracts are in docs/architecture.md.
 #pragma once
 
 #include <stdexcept>

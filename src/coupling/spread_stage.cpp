@@ -1,0 +1,56 @@
+// The spread stage (coupling/stages/spread_stage.h).
+#include "ehd_capsule/coupling/stages/spread_stage.h"
+
+#include "ehd_capsule/ib/marker_update.h"
+
+namespace ehd {
+
+template <int D>
+SpreadStage<D>::SpreadStage(const Scene& scene, const ImmersedBoundaryTransfer<D>& ib,
+                            StepData<D>& data, FluidOf<D>& fluid)
+    : scene_(scene), ib_(ib), data_(data), fluid_(fluid) {}
+
+template <int D>
+std::string SpreadStage<D>::Describe() const {
+  std::string sources;
+  for (const auto& source : data_.bodies.front().sources) {
+    sources += (sources.empty() ? "" : " + ") + source->name;
+  }
+  if constexpr (D == 2) {
+    return "cosine delta (eq. 103), spread the sum of the force sources (" + sources + ") dl" +
+           (scene_.has_shear() ? ", periodic in x" : "");
+  } else {
+    return "cosine delta (eq. 103) as a product in 3D, spread the sum of the force sources (" +
+           sources + ") per vertex";
+  }
+}
+
+template <int D>
+void SpreadStage<D>::Run(long) {
+  for (Body<D>& body : data_.bodies) {
+    body.SumLoads();
+    if constexpr (D == 2) {
+      MarkerArcElements(body.shape.curve, body.dl);
+      body.force.resize(2, body.size());
+      for (int k = 0; k < body.size(); ++k) body.force.col(k) = body.load.col(k) * body.dl[k];
+    } else {
+      body.force = body.load;
+    }
+  }
+  fluid_.ClearForce();
+  for (const Body<D>& body : data_.bodies) {
+    ib_.Spread(body.positions(), body.force, ForceOf<D>(fluid_));  // adds
+  }
+}
+
+template <int D>
+void SpreadStage<D>::Restore(CheckpointReader&) {
+  if constexpr (D == 2) {
+    for (Body<D>& body : data_.bodies) MarkerArcElements(body.shape.curve, body.dl);
+  }
+}
+
+template class SpreadStage<2>;
+template class SpreadStage<3>;
+
+}  // namespace ehd
