@@ -2,9 +2,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <sstream>
+#include <utility>
 
 #include "command.h"
 #include "ehd_capsule/coupling/simulation.h"
@@ -22,7 +26,8 @@ const char* kUsage =
     "usage: ehd_sim run SCENE [--set key=value ...] [--steps N | --until T | --until-steady TOL]\n"
     "                  [--csv FILE] [--csv-every N] [--progress SECONDS] [--quiet]\n"
     "                  [--vtk DIR --vtk-every N] [--checkpoint-every N --checkpoint FILE]\n"
-    "                  [--restart FILE] [--sections FILE --sections-every N]\n\n"
+    "                  [--restart FILE] [--sections FILE --sections-every N]\n"
+    "                  [--summary-json FILE]\n\n"
     "Runs SCENE (a name in config/scenes or a path to a .yaml file). Prints the scene, the\n"
     "derived lattice values and the assembled pipeline, then a progress line.\n"
     "  --set key=value   override a scene key (nested: geometry.shape=ellipse); repeatable\n"
@@ -39,16 +44,34 @@ const char* kUsage =
     "  --sections FILE   the membrane's section in the shear plane every --sections-every N\n"
     "                    steps (default 100) as step,t,point,x,y in units of a about the\n"
     "                    centroid: the markers in 2D, the cut z = z_centroid of the mesh in 3D\n"
+    "  --summary-json FILE  at the end (also after an error or an invalid scene), one JSON\n"
+    "                    object: status (completed, steady, not_steady, step_cap,\n"
+    "                    simulation_error, invalid_scene), reason, exit_status, the final\n"
+    "                    state's values, steps, wall and CPU seconds, seconds per stage;\n"
+    "                    written to FILE.tmp and renamed, so FILE exists only when complete\n"
     "Exit status 0 on success, 1 if the simulation stopped on an error (the message names the\n"
     "step and the quantity) or at the step cap numerics.max_steps before its end time, 2 on a\n"
     "usage error.\n";
 
-int RunScene(const std::vector<std::string>& args) {
-  std::string scene_name, csv_path, vtk_dir, checkpoint_path, restart_path, sections_path;
+struct RunOptions {
+  std::string scene_name, csv_path, vtk_dir, checkpoint_path, restart_path, sections_path,
+      summary_path;
   std::vector<std::string> overrides;
   long steps = -1, csv_every = 1, vtk_every = 0, checkpoint_every = 0, sections_every = 100;
   double until = -1.0, steady_tol = -1.0, progress_s = 2.0;
   bool quiet = false;
+};
+
+RunOptions ParseRunOptions(const std::vector<std::string>& args) {
+  RunOptions o;
+  std::string &scene_name = o.scene_name, &csv_path = o.csv_path, &vtk_dir = o.vtk_dir,
+              &checkpoint_path = o.checkpoint_path, &restart_path = o.restart_path,
+              &sections_path = o.sections_path;
+  std::vector<std::string>& overrides = o.overrides;
+  long &steps = o.steps, &csv_every = o.csv_every, &vtk_every = o.vtk_every,
+       &checkpoint_every = o.checkpoint_every, &sections_every = o.sections_every;
+  double &until = o.until, &steady_tol = o.steady_tol, &progress_s = o.progress_s;
+  bool& quiet = o.quiet;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--set")
@@ -81,6 +104,8 @@ int RunScene(const std::vector<std::string>& args) {
       sections_path = OptionValue(args, i);
     else if (a == "--sections-every")
       sections_every = ParseLong(a, OptionValue(args, i));
+    else if (a == "--summary-json")
+      o.summary_path = OptionValue(args, i);
     else if (!a.empty() && a[0] == '-')
       throw UsageError("unknown option '" + a + "'");
     else if (scene_name.empty())
@@ -107,8 +132,121 @@ int RunScene(const std::vector<std::string>& args) {
   }
   if (steady_tol == 0.0) throw UsageError("--until-steady needs a tolerance > 0");
 
-  const Scene scene = LoadScene(scene_name, overrides);
-  Simulation sim(scene);
+  return o;
+}
+
+std::string JsonString(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string JsonNumber(double v) {
+  if (!std::isfinite(v)) return "null";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+// How a run ended, for --summary-json.
+struct RunEnd {
+  std::string status;  // completed, steady, not_steady, step_cap, simulation_error, invalid_scene
+  std::string reason;  // the error or the stop, in words
+  int exit_status = 0;
+};
+
+// Writes the summary to path.tmp, then renames it to path: a reader never sees a partial file.
+// sim is null when the scene could not be built.
+void WriteSummaryJson(const RunOptions& o, const Simulation* sim, const RunEnd& end, double wall_s,
+                      double cpu_s, long steps_taken) {
+  if (o.summary_path.empty()) return;
+  std::ostringstream j;
+  j << "{\n  \"scene\": " << JsonString(o.scene_name) << ",\n  \"overrides\": [";
+  for (std::size_t i = 0; i < o.overrides.size(); ++i) {
+    j << (i ? ", " : "") << JsonString(o.overrides[i]);
+  }
+  j << "],\n  \"status\": " << JsonString(end.status)
+    << ",\n  \"reason\": " << JsonString(end.reason) << ",\n  \"exit_status\": " << end.exit_status;
+  if (sim != nullptr) {
+    const SimulationState& s = sim->state();
+    const std::pair<const char*, double> values[] = {{"t", s.time},
+                                                     {"dxy", s.dxy},
+                                                     {"inclination_over_pi", s.inclination / M_PI},
+                                                     {"area", s.area},
+                                                     {"area_drift", s.area_drift},
+                                                     {"surface_drift", s.surface_drift},
+                                                     {"d_field", s.d_field},
+                                                     {"surface_flow", s.surface_flow},
+                                                     {"volume_corrected", s.volume_corrected},
+                                                     {"tt_phase", s.tt_phase},
+                                                     {"ca", s.ca},
+                                                     {"ca_e", s.ca_e},
+                                                     {"max_mach", s.max_mach},
+                                                     {"gmres_residual", s.gmres_residual}};
+    j << ",\n  \"dimension\": " << s.dimension << ",\n  \"step\": " << s.step
+      << ",\n  \"gmres_iterations\": " << s.gmres_iterations;
+    for (const auto& [key, value] : values) j << ",\n  \"" << key << "\": " << JsonNumber(value);
+    j << ",\n  \"time_unit\": "
+      << JsonString(sim->scene().has_shear() ? "1/k" : sim->units().time_unit);
+    j << ",\n  \"stage_seconds\": {";
+    const auto stages = sim->StageTimes();
+    for (std::size_t i = 0; i < stages.size(); ++i) {
+      j << (i ? ", " : "") << JsonString(stages[i].name) << ": " << JsonNumber(stages[i].seconds);
+    }
+    j << "}";
+  }
+  j << ",\n  \"steps_taken\": " << steps_taken << ",\n  \"wall_seconds\": " << JsonNumber(wall_s)
+    << ",\n  \"cpu_seconds\": " << JsonNumber(cpu_s) << "\n}\n";
+  const std::string tmp = o.summary_path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << j.str();
+    if (!out) throw std::runtime_error("--summary-json: cannot write '" + tmp + "'");
+  }
+  if (std::rename(tmp.c_str(), o.summary_path.c_str()) != 0) {
+    throw std::runtime_error("--summary-json: cannot rename '" + tmp + "' to '" + o.summary_path +
+                             "'");
+  }
+}
+
+int RunScene(const std::vector<std::string>& args) {
+  const RunOptions o = ParseRunOptions(args);
+  const std::string &csv_path = o.csv_path, &vtk_dir = o.vtk_dir,
+                    &checkpoint_path = o.checkpoint_path, &restart_path = o.restart_path,
+                    &sections_path = o.sections_path;
+  const long steps = o.steps, csv_every = o.csv_every, checkpoint_every = o.checkpoint_every,
+             sections_every = o.sections_every;
+  long vtk_every = o.vtk_every;
+  const double until = o.until, steady_tol = o.steady_tol, progress_s = o.progress_s;
+  const bool quiet = o.quiet;
+  const std::clock_t cpu_start = std::clock();
+  const auto wall_start = std::chrono::steady_clock::now();
+  auto seconds = [&]() {
+    return std::pair<double, double>(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(),
+        static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+  };
+  std::unique_ptr<Simulation> built;
+  try {
+    built = std::make_unique<Simulation>(LoadScene(o.scene_name, o.overrides));
+  } catch (const std::exception& e) {
+    const auto [wall_s, cpu_s] = seconds();
+    WriteSummaryJson(o, nullptr, {"invalid_scene", e.what(), 1}, wall_s, cpu_s, 0);
+    throw;  // main prints it and exits 1
+  }
+  Simulation& sim = *built;
+  const Scene& scene = sim.scene();
   if (!quiet) {
     std::cout << DescribeScene(scene) << DescribeUnits(scene, sim.units()) << sim.Pipeline();
   }
@@ -222,6 +360,9 @@ int RunScene(const std::vector<std::string>& args) {
     if (csv) csv->Write(sim);
     write_section();
     if (sections != nullptr) std::fclose(sections);
+    const auto [wall_s, cpu_s] = seconds();
+    WriteSummaryJson(o, &sim, {"simulation_error", e.what(), 1}, wall_s, cpu_s,
+                     sim.state().step - first_step);
     return 1;
   }
   if (csv && sim.state().step % csv_every != 0) csv->Write(sim);
@@ -264,13 +405,30 @@ int RunScene(const std::vector<std::string>& args) {
     std::cout << "VTK: " << vtk_dir << "/fluid.pvd, " << vtk_dir << "/membrane.pvd ("
               << vtk->frames() << " frames)\n";
   if (!checkpoint_path.empty()) std::cout << "checkpoint: " << checkpoint_path << '\n';
-  if (capped) {
-    std::cerr << "ehd_sim run: stopped at the step cap numerics.max_steps = " << max_steps
-              << " at t = " << sim.state().time << " before t = " << t_end
-              << " (raise numerics.max_steps, or give --until T)\n";
-    return 1;
+  RunEnd end{"completed", "reached the end", 0};
+  if (steps > 0) {
+    end.reason = "reached " + std::to_string(steps) + " steps";
+  } else if (steady) {
+    end = {"steady", "D_xy and theta steady to " + FormatValue(steady_tol), 0};
+  } else if (!capped) {
+    end.reason = "reached t = " + FormatValue(t_end);
   }
-  return 0;
+  if (!capped && steady_tol > 0 && !steady) {
+    end = {"not_steady",
+           "not steady to " + FormatValue(steady_tol) + " by t = " + FormatValue(sim.state().time),
+           0};
+  }
+  if (capped) {
+    std::ostringstream why;
+    why << "stopped at the step cap numerics.max_steps = " << max_steps
+        << " at t = " << sim.state().time << " before t = " << t_end
+        << " (raise numerics.max_steps, or give --until T)";
+    std::cerr << "ehd_sim run: " << why.str() << '\n';
+    end = {"step_cap", why.str(), 1};
+  }
+  const auto [wall_s, cpu_s] = seconds();
+  WriteSummaryJson(o, &sim, end, wall_s, cpu_s, taken);
+  return end.exit_status;
 }
 
 const CommandRegistration kRun({"run", "run a scene headless (CSV time series, VTK, checkpoints)",

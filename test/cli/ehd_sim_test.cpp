@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -225,3 +226,56 @@ TEST(EhdSim, RestartContinuesBitForBit) {
 }
 
 }  // namespace
+
+// --summary-json: the machine-readable end of a run, for scripts and sweeps. The status and exit
+// status of each way a run ends, and the final values equal to the CSV's last row (the summary
+// must report the state the run ended in, not a copy taken earlier).
+std::string JsonField(const std::string& json, const std::string& key) {
+  const std::size_t at = json.find("\"" + key + "\": ");
+  if (at == std::string::npos) return "";
+  const std::size_t from = at + key.size() + 4;
+  if (json[from] == '"') return json.substr(from, json.find('"', from + 1) - from + 1);
+  return json.substr(from, json.find_first_of(",\n}", from) - from);
+}
+
+TEST(EhdSim, SummaryJsonSaysHowTheRunEnded) {
+  const std::string json = TempPath("summary.json"), csv = TempPath("summary.csv");
+  const std::string tiny = "run capsule_shear --set N=32 --set M=32 --quiet --summary-json " + json;
+  std::remove(json.c_str());
+  Result r = RunSim(tiny + " --steps 30 --csv " + csv);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::string text = ReadFile(json);
+  EXPECT_EQ(JsonField(text, "status"), "\"completed\"") << text;
+  EXPECT_EQ(JsonField(text, "exit_status"), "0") << text;
+  EXPECT_EQ(JsonField(text, "step"), "30") << text;
+  EXPECT_EQ(JsonField(text, "steps_taken"), "30") << text;
+  EXPECT_EQ(ReadFile(json + ".tmp"), "");  // renamed, not left behind
+  // The CSV's last row: step,t,dxy,... with the same %.10g digits.
+  std::istringstream rows(ReadFile(csv));
+  std::string row, last;
+  while (std::getline(rows, row)) last = row;
+  std::vector<std::string> cells;
+  std::stringstream split(last);
+  for (std::string cell; std::getline(split, cell, ',');) cells.push_back(cell);
+  ASSERT_GE(cells.size(), 3u) << last;
+  EXPECT_EQ(JsonField(text, "t"), cells[1]);
+  EXPECT_EQ(JsonField(text, "dxy"), cells[2]);
+  EXPECT_GT(std::stod(JsonField(text, "wall_seconds")), 0.0);
+  EXPECT_NE(text.find("\"fluid\": "), std::string::npos) << text;  // seconds per stage
+
+  // A capsule against the wall stops at step 1 with the watchdog's words and exit status 1.
+  r = RunSim(tiny + " --steps 30 --set geometry.center_y=2.8");
+  EXPECT_EQ(r.status, 1) << r.output;
+  text = ReadFile(json);
+  EXPECT_EQ(JsonField(text, "status"), "\"simulation_error\"") << text;
+  EXPECT_NE(JsonField(text, "reason").find("wall"), std::string::npos) << text;
+  EXPECT_EQ(JsonField(text, "exit_status"), "1") << text;
+
+  // An invalid scene: no state, the scene error as the reason.
+  r = RunSim(tiny + " --steps 30 --set N=3.5");
+  EXPECT_EQ(r.status, 1) << r.output;
+  text = ReadFile(json);
+  EXPECT_EQ(JsonField(text, "status"), "\"invalid_scene\"") << text;
+  EXPECT_NE(JsonField(text, "reason").find("'N' expected an integer"), std::string::npos) << text;
+  EXPECT_EQ(JsonField(text, "step"), "") << text;
+}
