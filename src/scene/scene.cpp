@@ -377,10 +377,16 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
                         ": a viscosity contrast is not built in 3D yet (dimension: 3 accepts 1)");
   }
 
-  // Electric field: present iff Ca_E > 0 or an explicit `electric:` block.
+  // Electric field: present iff Ca_E > 0 or an explicit `electric:` block. With the block, Ca_E
+  // is required (0 builds the field to be turned up live): a field scene whose Ca_E was deleted
+  // must not run silently without its field.
   const bool electric_block = top.Present("electric");
-  s.Ca_E = top.Number("Ca_E", Closed(0.0, 100.0), 0.0,
-                      "electric capillary number eps+ a E^2 / " + tension);
+  s.Ca_E = top.Number("Ca_E", Closed(0.0, 100.0),
+                      electric_block ? std::nullopt : std::optional<double>(0.0),
+                      "electric capillary number eps+ a E^2 / " + tension +
+                          (electric_block ? " (required with an electric: block; 0 starts the "
+                                            "field off, to be turned up live)"
+                                          : ""));
   s.electric_field = s.Ca_E > 0.0 || electric_block;
   {
     BlockReader e(top.Child("electric"), "electric", origin);

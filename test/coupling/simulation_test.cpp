@@ -117,7 +117,7 @@ TEST(Simulation, ElectricDropDeformsAsFengPredicts) {
 }
 
 TEST(Simulation, SetCaAndSetCaETakeEffectAtTheNextStep) {
-  Simulation sim(ParseScene(kTinyCapsule, {"electric={}", "sigma_r=2", "eps_r=1"}));
+  Simulation sim(ParseScene(kTinyCapsule, {"electric={}", "Ca_E=0", "sigma_r=2", "eps_r=1"}));
   EXPECT_DOUBLE_EQ(sim.state().ca_e, 0.0);
   sim.Step();
   EXPECT_EQ(sim.state().gmres_iterations, 0);  // field built but off

@@ -91,11 +91,15 @@ TEST(Scene, ElectricFieldNeedsRatios) {
   ExpectSceneError(kMinimalCapsule, {"Ca_E=0.3"}, {"'sigma_r'", "missing"});
   const Scene s = ParseScene(kMinimalCapsule, {"Ca_E=0.3", "sigma_r=1.75", "eps_r=3.5"});
   EXPECT_TRUE(s.electric_field);
-  // An explicit (empty) electric block builds the field at Ca_E = 0 so it can be switched on.
+  // An explicit (empty) electric block with Ca_E = 0 builds the field so it can be switched on;
+  // without Ca_E it is refused (a field scene whose Ca_E was deleted would otherwise run with a
+  // zero field and the solver built).
   const Scene block =
-      ParseScene(std::string(kMinimalCapsule) + "electric: {}\nsigma_r: 2\neps_r: 1\n");
+      ParseScene(std::string(kMinimalCapsule) + "electric: {}\nCa_E: 0\nsigma_r: 2\neps_r: 1\n");
   EXPECT_TRUE(block.electric_field);
   EXPECT_DOUBLE_EQ(block.Ca_E, 0.0);
+  ExpectSceneError(std::string(kMinimalCapsule) + "electric: {}\nsigma_r: 2\neps_r: 1\n", {},
+                   {"'Ca_E'", "missing", "electric: block"});
   ExpectSceneError(kMinimalCapsule, {"Ca_E=6", "sigma_r=1", "eps_r=1"}, {"'Ca_E'", "[0, 5]"});
 }
 
