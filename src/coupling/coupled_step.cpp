@@ -5,6 +5,7 @@
 #include <chrono>
 #include <sstream>
 
+#include "ehd_capsule/coupling/force_term.h"
 #include "ehd_capsule/coupling/stages/diagnostics_stage.h"
 #include "ehd_capsule/coupling/stages/electric_stage.h"
 #include "ehd_capsule/coupling/stages/fluid_stage.h"
@@ -126,6 +127,12 @@ class CoupledStepOf : public CoupledStep {
     } else {
       not_built_.push_back("electric (no field in the scene)");
     }
+    // Force terms (src/forces/): their sources after the membrane's and the electric one.
+    for (const ForceTermModule& term : ForceTermModules()) {
+      if (term.active(scene)) {
+        force_terms_.push_back(std::make_unique<ForceTermStage<D>>(term, scene, units, data_));
+      }
+    }
     spread_ = std::make_unique<SpreadStage<D>>(scene, *ib_, data_, fluid_->lattice());
     if constexpr (D == 2) {
       if (scene.has_viscosity_contrast()) {
@@ -137,12 +144,16 @@ class CoupledStepOf : public CoupledStep {
     markers_ = std::make_unique<MarkerStage<D>>(scene, grid_, *ib_, data_, fluid_->lattice());
     diagnostics_ = std::make_unique<DiagnosticsStage<D>>(scene, units, data_, fluid_->lattice());
 
-    // Run order, song2019 sec. 3.6.
+    // Run order, song2019 sec. 3.6 (the force terms between the membrane and the spread).
+    std::vector<StepStage*> order{electric_.get(), membrane_.get()};
+    for (const auto& term : force_terms_) order.push_back(term.get());
     for (StepStage* stage :
-         {static_cast<StepStage*>(electric_.get()), static_cast<StepStage*>(membrane_.get()),
-          static_cast<StepStage*>(spread_.get()), viscosity_.get(),
+         {static_cast<StepStage*>(spread_.get()), viscosity_.get(),
           static_cast<StepStage*>(fluid_.get()), static_cast<StepStage*>(markers_.get()),
           static_cast<StepStage*>(diagnostics_.get())}) {
+      order.push_back(stage);
+    }
+    for (StepStage* stage : order) {
       if (stage != nullptr) stages_.push_back(stage);
     }
   }
@@ -226,6 +237,7 @@ class CoupledStepOf : public CoupledStep {
   std::unique_ptr<FluidStage<D>> fluid_;
   std::unique_ptr<ElectricStage<D>> electric_;  // only with a field
   std::unique_ptr<MembraneStage<D>> membrane_;
+  std::vector<std::unique_ptr<ForceTermStage<D>>> force_terms_;  // active force terms
   std::unique_ptr<SpreadStage<D>> spread_;
   std::unique_ptr<StepStage> viscosity_;  // 2D, only with V != 1
   std::unique_ptr<MarkerStage<D>> markers_;

@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 namespace ehd {
 namespace {
@@ -21,23 +22,6 @@ std::string FormatNumber(double v) {
   return out.str();
 }
 
-// An interval of accepted values, printed as "(0, 10]".
-struct Range {
-  double lo;
-  double hi;
-  bool lo_open = false;
-  bool hi_open = false;
-  bool Contains(double v) const {
-    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-  }
-  std::string Text() const {
-    return std::string(lo_open ? "(" : "[") + FormatNumber(lo) + ", " + FormatNumber(hi) +
-           (hi_open ? ")" : "]");
-  }
-};
-Range Closed(double lo, double hi) { return {lo, hi, false, false}; }
-Range LeftOpen(double lo, double hi) { return {lo, hi, true, false}; }
-
 std::string ScalarText(const YAML::Node& node) {
   if (node.IsScalar()) return "'" + node.Scalar() + "'";
   if (node.IsMap()) return "a block (map)";
@@ -45,139 +29,175 @@ std::string ScalarText(const YAML::Node& node) {
   return "nothing";
 }
 
-// Reads the keys of one YAML block; remembers which keys it knows so that the rest are reported
-// as unknown.
-class BlockReader {
+// A YAML scalar that reads as a finite number; false for blocks, lists and text.
+bool ScalarAsDouble(const YAML::Node& v, double* x) {
+  if (!v.IsScalar()) return false;
+  try {
+    *x = v.as<double>();
+    return std::isfinite(*x);
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+}
+
+// Reads a scene's YAML tree key by key from the modules' declarations (scene/scene_keys.h).
+class SceneReader {
  public:
-  BlockReader(const YAML::Node& node, std::string prefix, std::string origin)
-      : node_(node), prefix_(std::move(prefix)), origin_(std::move(origin)) {
-    if (node_ && !node_.IsNull() && !node_.IsMap()) {
-      Fail(prefix_.empty() ? "the scene" : "'" + prefix_ + "'",
-           "must be a block of 'key: value' lines, got " + ScalarText(node_));
-    }
-  }
-
-  // A YAML scalar that reads as a number; false for blocks, lists and text.
-  static bool ScalarAsDouble(const YAML::Node& v, double* x) {
-    if (!v.IsScalar()) return false;
-    try {
-      *x = v.as<double>();
-      return true;
-    } catch (const YAML::Exception&) {
-      return false;
-    }
-  }
-
-  bool Has(const std::string& key) {
-    known_.insert(key);
-    return node_ && node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
-  }
-  bool Present(const std::string& key) {  // defined, possibly as an empty block
-    known_.insert(key);
-    return node_ && node_.IsMap() && node_[key].IsDefined();
-  }
-  YAML::Node Child(const std::string& key) {
-    known_.insert(key);
-    return node_ && node_.IsMap() ? node_[key] : YAML::Node();
-  }
-
-  double Number(const std::string& key, const Range& range, std::optional<double> fallback,
-                const std::string& meaning) {
-    if (!Has(key)) return Missing(key, fallback, meaning + ", a number in " + range.Text());
-    const YAML::Node v = node_[key];
-    double x = 0.0;
-    const bool ok = ScalarAsDouble(v, &x);
-    if (!ok || !std::isfinite(x)) {
-      Fail(Name(key),
-           "expected a number in " + range.Text() + " (" + meaning + "), got " + ScalarText(v));
-    }
-    if (!range.Contains(x)) {
-      Fail(Name(key),
-           "= " + v.Scalar() + " is out of range: accepted " + range.Text() + " (" + meaning + ")");
-    }
-    return x;
-  }
-
-  long Integer(const std::string& key, long lo, long hi, std::optional<long> fallback,
-               const std::string& meaning) {
-    const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-    if (!Has(key)) {
-      return static_cast<long>(Missing(key,
-                                       fallback ? std::optional<double>(*fallback) : std::nullopt,
-                                       meaning + ", an integer in " + range));
-    }
-    const YAML::Node v = node_[key];
-    double x = 0.0;
-    const bool ok = ScalarAsDouble(v, &x);
-    if (!ok || !std::isfinite(x) || x != std::floor(x)) {
-      Fail(Name(key),
-           "expected an integer in " + range + " (" + meaning + "), got " + ScalarText(v));
-    }
-    if (x < lo || x > hi) {
-      Fail(Name(key),
-           "= " + v.Scalar() + " is out of range: accepted " + range + " (" + meaning + ")");
-    }
-    return static_cast<long>(x);
-  }
-
-  std::string Choice(const std::string& key, const std::vector<std::string>& choices,
-                     std::optional<std::string> fallback, const std::string& meaning) {
-    std::string list;
-    for (const auto& c : choices) list += (list.empty() ? "" : " | ") + c;
-    if (!Has(key)) {
-      if (fallback) return *fallback;
-      Fail(Name(key), "missing (" + meaning + ": one of " + list + ")");
-    }
-    const YAML::Node v = node_[key];
-    if (!v.IsScalar() || std::find(choices.begin(), choices.end(), v.Scalar()) == choices.end()) {
-      Fail(Name(key), "expected one of " + list + " (" + meaning + "), got " + ScalarText(v));
-    }
-    return v.Scalar();
-  }
-
-  std::string Text(const std::string& key, const std::string& fallback) {
-    if (!Has(key)) return fallback;
-    const YAML::Node v = node_[key];
-    if (!v.IsScalar()) Fail(Name(key), "expected text, got " + ScalarText(v));
-    return v.Scalar();
-  }
-
-  // A key that must not be given in this configuration.
-  void Forbid(const std::string& key, const std::string& why) {
-    if (Has(key)) Fail(Name(key), "= " + ScalarText(node_[key]) + " is not accepted here: " + why);
-  }
-
-  void RejectUnknown() const {
-    if (!node_ || !node_.IsMap()) return;
-    for (const auto& entry : node_) {
-      const std::string key = entry.first.as<std::string>();
-      if (known_.count(key)) continue;
-      std::string list;
-      for (const auto& k : known_) list += (list.empty() ? "" : ", ") + k;
-      Fail("'" + (prefix_.empty() ? key : prefix_ + "." + key) + "'",
-           "unknown key (value " + ScalarText(entry.second) + "); accepted keys" +
-               (prefix_.empty() ? "" : " in '" + prefix_ + "'") + ": " + list);
-    }
-  }
+  SceneReader(const YAML::Node& root, std::string origin)
+      : root_(root), origin_(std::move(origin)) {}
 
   [[noreturn]] void Fail(const std::string& what, const std::string& message) const {
     throw SceneError("scene " + origin_ + ": " + what + " " + message);
   }
 
- private:
-  std::string Name(const std::string& key) const {
-    return "'" + (prefix_.empty() ? key : prefix_ + "." + key) + "'";
-  }
-  double Missing(const std::string& key, std::optional<double> fallback,
-                 const std::string& meaning) {
-    if (fallback) return *fallback;
-    Fail(Name(key), "missing (" + meaning + ")");
+  // Every key of the tree is declared (a block's keys as "block.key"); checked before any value
+  // is read, so that a misspelt key is reported as such and not as the missing key it stands for.
+  void RejectUnknown(const std::vector<SceneModule>& modules) const {
+    std::map<std::string, std::vector<std::string>> accepted;  // block ("" = top) -> keys
+    std::set<std::string> blocks;
+    for (const SceneModule& m : modules) {
+      for (const SceneKey& k : m.keys) {
+        const std::size_t dot = k.path.rfind('.');
+        const std::string block = dot == std::string::npos ? "" : k.path.substr(0, dot);
+        const std::string leaf = dot == std::string::npos ? k.path : k.path.substr(dot + 1);
+        auto& list = accepted[block];
+        if (std::find(list.begin(), list.end(), leaf) == list.end()) list.push_back(leaf);
+        if (k.type == KeyType::kBlock) blocks.insert(k.path);
+      }
+    }
+    for (auto& [block, list] : accepted) std::sort(list.begin(), list.end());
+    CheckKeys(root_, "", accepted, blocks);
   }
 
-  YAML::Node node_;
-  std::string prefix_;
+  // Reads one declared key that applies here: its value, its default, or the error.
+  void Read(const SceneKey& key, Scene& s) const {
+    const YAML::Node v = Find(key.path);
+    std::optional<SceneValue> value;
+    if (key.type == KeyType::kBlock) {
+      if (!v.IsDefined()) {
+        if (key.required) Fail(Name(key), "missing (" + key.doc + ")");
+      } else {
+        if (!v.IsNull() && !v.IsMap()) {
+          Fail(Name(key), "must be a block of 'key: value' lines, got " + ScalarText(v));
+        }
+        value = SceneValue{1.0, {}};
+      }
+    } else if (!v.IsDefined()) {
+      if (key.required) {
+        Fail(Name(key), key.type == KeyType::kChoice
+                            ? "missing (" + key.doc + ": " + key.TypeText() + ")"
+                            : "missing (" + key.doc + ", " + key.TypeText() + ")");
+      }
+      if (key.fallback) value = key.fallback;
+      if (key.fallback_from) value = key.fallback_from(s);
+    } else if (v.IsNull()) {
+      Fail(Name(key),
+           "is empty: give " + key.TypeText() + " (" + key.doc + ")" +
+               (key.required ? ""
+                             : ", or delete the line for the default (" + key.DefaultText() + ")"));
+    } else {
+      value = Parse(key, v);
+    }
+    if (!value) return;
+    s.values[key.path] = *value;
+    if (key.store) key.store(s, *value);
+  }
+
+  // A key given where its declaration does not apply: refused with the reason, unless it holds
+  // the one value accepted there.
+  void Refuse(const SceneKey& key) const {
+    const YAML::Node v = Find(key.path);
+    if (!v.IsDefined() || v.IsNull()) return;
+    if (key.otherwise && key.type != KeyType::kBlock) {
+      double x = 0;
+      const bool same = key.type == KeyType::kChoice || key.type == KeyType::kText
+                            ? v.IsScalar() && v.Scalar() == key.otherwise->text
+                            : ScalarAsDouble(v, &x) && x == key.otherwise->number;
+      if (same) return;
+      const std::string accepted = key.type == KeyType::kChoice || key.type == KeyType::kText
+                                       ? key.otherwise->text
+                                       : FormatNumber(key.otherwise->number);
+      Fail(Name(key), "= " + ScalarText(v) + " is not accepted here: " + key.refusal +
+                          " (accepted here: " + accepted + ")");
+    }
+    Fail(Name(key), "= " + ScalarText(v) + " is not accepted here: " + key.refusal);
+  }
+
+ private:
+  static std::string Name(const SceneKey& key) { return "'" + key.path + "'"; }
+
+  // The node at a dotted path; undefined where a part is missing. (Handles are re-pointed with
+  // reset: assigning one YAML::Node to another would write into the tree.)
+  YAML::Node Find(const std::string& path) const {
+    YAML::Node node;
+    node.reset(root_);
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t dot = path.find('.', start);
+      const std::string part = path.substr(start, dot - start);
+      if (!node.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+      const YAML::Node& parent = node;  // const: a lookup does not insert
+      const YAML::Node child = parent[part];
+      if (dot == std::string::npos || !child.IsDefined()) return child;
+      node.reset(child);
+      start = dot + 1;
+    }
+  }
+
+  SceneValue Parse(const SceneKey& key, const YAML::Node& v) const {
+    const std::string meaning = " (" + key.doc + ")";
+    switch (key.type) {
+      case KeyType::kNumber:
+      case KeyType::kInteger: {
+        double x = 0.0;
+        const bool integer = key.type == KeyType::kInteger;
+        if (!ScalarAsDouble(v, &x) || (integer && x != std::floor(x))) {
+          Fail(Name(key), "expected " + key.TypeText() + meaning + ", got " + ScalarText(v));
+        }
+        if (!key.range.Contains(x)) {
+          Fail(Name(key),
+               "= " + v.Scalar() + " is out of range: accepted " + key.range.Text() + meaning);
+        }
+        return {x, {}};
+      }
+      case KeyType::kChoice:
+        if (!v.IsScalar() ||
+            std::find(key.choices.begin(), key.choices.end(), v.Scalar()) == key.choices.end()) {
+          Fail(Name(key), "expected " + key.TypeText() + meaning + ", got " + ScalarText(v));
+        }
+        return {0.0, v.Scalar()};
+      case KeyType::kText:
+        if (!v.IsScalar()) Fail(Name(key), "expected text, got " + ScalarText(v));
+        return {0.0, v.Scalar()};
+      case KeyType::kBlock:
+        break;
+    }
+    return {};
+  }
+
+  void CheckKeys(const YAML::Node& node, const std::string& block,
+                 const std::map<std::string, std::vector<std::string>>& accepted,
+                 const std::set<std::string>& blocks) const {
+    if (!node.IsMap()) return;
+    static const std::vector<std::string> kNone;
+    const auto found = accepted.find(block);
+    const std::vector<std::string>& keys = found == accepted.end() ? kNone : found->second;
+    for (const auto& entry : node) {
+      const std::string key = entry.first.as<std::string>();
+      const std::string path = block.empty() ? key : block + "." + key;
+      if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+        std::string list;
+        for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;
+        Fail("'" + path + "'", "unknown key (value " + ScalarText(entry.second) +
+                                   "); accepted keys" +
+                                   (block.empty() ? "" : " in '" + block + "'") + ": " + list);
+      }
+      if (blocks.count(path)) CheckKeys(entry.second, path, accepted, blocks);
+    }
+  }
+
+  YAML::Node root_;
   std::string origin_;
-  std::set<std::string> known_;
 };
 
 std::vector<std::string> SplitPath(const std::string& key) {
@@ -232,288 +252,468 @@ void ApplyOverride(YAML::Node& root, const std::string& text) {
 }
 
 Scene Validate(const YAML::Node& root, const std::string& origin) {
+  const std::vector<SceneModule>& modules = SceneModules();
+  SceneReader reader(root, origin);
+  reader.RejectUnknown(modules);
+  // The last declaration of each path: where none of its declarations applied, that one refuses.
+  std::map<std::string, const SceneKey*> last;
+  for (const SceneModule& m : modules) {
+    for (const SceneKey& k : m.keys) last[k.path] = &k;
+  }
   Scene s;
-  BlockReader top(root, "", origin);
-  s.description = top.Text("description", "");
-  if (top.Has("name")) s.name = top.Text("name", "");
-
-  s.dimension = static_cast<int>(top.Integer("dimension", 2, 3, 2, "spatial dimension"));
-  const bool three_d = s.dimension == 3;
-  s.N = static_cast<int>(top.Integer(
-      "N", 16, three_d ? 512 : 4096, std::nullopt,
-      three_d ? "grid cells along each axis (N^3 nodes)" : "grid cells across the domain"));
-  if (three_d) {
-    top.Forbid("M", "a 3D membrane is a triangulated surface: set mesh_subdivisions instead");
-    s.mesh_subdivisions = static_cast<int>(top.Integer(
-        "mesh_subdivisions", 1, 6, std::nullopt,
-        "icosphere subdivisions of the membrane mesh: 3 = 642, 4 = 2562, 5 = 10242 vertices"));
-    s.M = 10 * (1 << (2 * s.mesh_subdivisions)) + 2;
-  } else {
-    top.Forbid("mesh_subdivisions", "only dimension: 3 has a triangulated membrane (2D: M)");
-    s.M = static_cast<int>(top.Integer("M", 8, 100000, std::nullopt, "markers on the membrane"));
-  }
-
-  // Geometry.
-  {
-    BlockReader g(top.Child("geometry"), "geometry", origin);
-    if (!top.Has("geometry")) top.Fail("'geometry'", "missing (block with shape, half_width)");
-    const std::string shape =
-        three_d
-            ? g.Choice("shape", {"sphere", "biconcave"}, std::nullopt, "initial 3D shape")
-            : g.Choice("shape", {"circle", "ellipse", "biconcave"}, std::nullopt, "initial shape");
-    s.geometry.shape = shape == "circle"    ? InitialShape::kCircle
-                       : shape == "ellipse" ? InitialShape::kEllipse
-                       : shape == "sphere"  ? InitialShape::kSphere
-                                            : InitialShape::kBiconcave;
-    s.geometry.half_width = g.Number("half_width", LeftOpen(1.0, 1000.0), std::nullopt,
-                                     three_d ? "half the box edge L in units of the radius a"
-                                             : "domain half-width L in units of the radius a");
-    if (three_d) {
-      s.geometry.half_length =
-          g.Number("half_length", LeftOpen(1.0, 1000.0), s.geometry.half_width,
-                   "half the box's x and z edges in units of a (default half_width: a cube)");
-    } else {
-      g.Forbid("half_length", "a 2D scene's box is [-L, L]^2 (half_width)");
-    }
-    if (s.geometry.shape == InitialShape::kEllipse) {
-      s.geometry.aspect_ratio = g.Number("aspect_ratio", LeftOpen(0.0, 1.0), std::nullopt,
-                                         "minor/major semi-axis of the initial ellipse");
-    } else {
-      g.Forbid("aspect_ratio", "only shape: ellipse has an aspect ratio");
-    }
-    s.geometry.center_x = g.Number("center_x", Closed(-1000, 1000), 0.0, "x offset / a");
-    s.geometry.center_y = g.Number("center_y", Closed(-1000, 1000), 0.0, "y offset / a");
-    if (three_d) {
-      s.geometry.center_z = g.Number("center_z", Closed(-1000, 1000), 0.0, "z offset / a");
-    } else {
-      g.Forbid("center_z", "a 2D scene has no z axis");
-    }
-    g.RejectUnknown();
-  }
-
-  const std::string membrane =
-      top.Choice("membrane", {"capsule", "drop"}, std::nullopt,
-                 "membrane model: capsule (Hookean + Kelvin-Voigt + bending) or drop (tension)");
-  s.membrane = membrane == "drop" ? MembraneKind::kDrop : MembraneKind::kCapsule;
-  const std::string flow =
-      top.Choice("flow", {"shear", "none"}, std::nullopt, "imposed flow: shear walls or none");
-  s.flow = flow == "none" ? FlowKind::kNone : FlowKind::kShear;
-
-  const std::string tension = s.membrane == MembraneKind::kDrop ? "gamma" : three_d ? "G_s" : "E_s";
-  if (s.has_shear()) {
-    s.Ca =
-        top.Number("Ca", LeftOpen(0.0, 10.0), std::nullopt, "capillary number mu k a / " + tension);
-    s.Re = top.Number("Re", LeftOpen(0.0, 100.0), std::nullopt, "Reynolds number rho k a^2 / mu");
-    s.max_Ca = top.Number("max_Ca", LeftOpen(0.0, 10.0), 10.0,
-                          "largest Ca accepted at run time (the scene's measured limit)");
-    if (s.Ca > s.max_Ca) {
-      top.Fail("'Ca'", "= " + FormatNumber(s.Ca) + " is out of range: accepted (0, " +
-                           FormatNumber(s.max_Ca) + "] (max_Ca)");
-    }
-    top.Forbid("Oh", "Oh sets the time scale only without shear (flow: none); use Ca and Re");
-  } else {
-    s.Oh = top.Number("Oh", LeftOpen(0.0, 100.0), std::nullopt,
-                      "Ohnesorge number mu / sqrt(rho a " + tension + ")");
-    top.Forbid("Ca", "there is no shear rate with flow: none (use Oh)");
-    top.Forbid("max_Ca", "there is no shear rate with flow: none");
-    top.Forbid("Re", "there is no shear rate with flow: none (use Oh)");
-  }
-  if (three_d && s.membrane == MembraneKind::kDrop) {
-    for (const char* key : {"law", "C", "c0"}) {
-      top.Forbid(key, "a drop has a surface tension only (law, C and c0 are capsule keys)");
-    }
-  } else if (three_d) {
-    const std::string law = top.Choice("law", {"neo_hookean", "zero_thickness", "skalak"},
-                                       std::nullopt, "3D membrane law (song2019 eqs. 137-139)");
-    s.law = law == "skalak"           ? SurfaceLawKind::kSkalak
-            : law == "zero_thickness" ? SurfaceLawKind::kZeroThickness
-                                      : SurfaceLawKind::kNeoHookean;
-    if (s.law == SurfaceLawKind::kSkalak) {
-      s.area_dilation = top.Number("C", LeftOpen(0.0, 1e6), std::nullopt,
-                                   "Skalak area-dilation to shear modulus ratio");
-    } else {
-      top.Forbid("C", "only law: skalak has an area-dilation modulus");
-    }
-    s.c0 = top.Number("c0", Closed(-100.0, 100.0), 0.0,
-                      "spontaneous curvature times a (Helfrich bending)");
-    for (const char* key : {"eta", "prestress"}) {
-      if (top.Has(key)) {
-        const double v = top.Number(key, Closed(0.0, 0.0), 0.0,
-                                    "membrane viscosity and prestress are not built in 3D yet");
-        (void)v;
+  std::set<std::string> read;
+  for (const SceneModule& m : modules) {
+    for (const SceneKey& k : m.keys) {
+      if (read.count(k.path)) continue;
+      if (k.when.Holds(s)) {
+        reader.Read(k, s);
+        read.insert(k.path);
+      } else if (last.at(k.path) == &k) {
+        reader.Refuse(k);
       }
     }
-  } else {
-    for (const char* key : {"law", "C", "c0"}) {
-      top.Forbid(key,
-                 "2D capsules have their own law (Hookean fibre, E_b, eta); law, C and c0 "
-                 "are for dimension: 3");
+    if (m.check) {
+      m.check(s, [&](const std::string& message) {
+        throw SceneError("scene " + origin + ": " + message);
+      });
     }
   }
-  const std::string modulus = three_d ? "G_s" : "E_s";
-  if (s.membrane == MembraneKind::kCapsule) {
-    s.E_b = top.Number("E_b", Closed(0.0, 10.0), std::nullopt,
-                       "bending modulus E_B / (a^2 " + modulus + ")");
-    if (!three_d) {
-      s.eta = top.Number("eta", Closed(0.0, 100.0), std::nullopt,
-                         "membrane viscosity ratio mu_s / (a mu)");
-      s.prestress = top.Number("prestress", Closed(0.0, 10.0), 0.0,
-                               "isotropic membrane pre-tension tau_p / E_s");
-    }
-  } else {
-    for (const char* key : {"E_b", "eta", "prestress"}) {
-      if (top.Has(key)) {
-        const double v = top.Number(key, Closed(0.0, 0.0), 0.0,
-                                    "a drop has no bending, membrane viscosity or prestress; needs "
-                                    "membrane: capsule");
-        (void)v;
-      }
-    }
-  }
-  s.V =
-      top.Number("V", Closed(0.01, 100.0), std::nullopt, "viscosity ratio mu_inside / mu_outside");
-  if (three_d && s.V != 1.0) {
-    top.Fail("'V'", "= " + FormatNumber(s.V) +
-                        ": a viscosity contrast is not built in 3D yet (dimension: 3 accepts 1)");
-  }
-
-  // Electric field: present iff Ca_E > 0 or an explicit `electric:` block. With the block, Ca_E
-  // is required (0 builds the field to be turned up live): a field scene whose Ca_E was deleted
-  // must not run silently without its field.
-  const bool electric_block = top.Present("electric");
-  s.Ca_E = top.Number("Ca_E", Closed(0.0, 100.0),
-                      electric_block ? std::nullopt : std::optional<double>(0.0),
-                      "electric capillary number eps+ a E^2 / " + tension +
-                          (electric_block ? " (required with an electric: block; 0 starts the "
-                                            "field off, to be turned up live)"
-                                          : ""));
-  s.electric_field = s.Ca_E > 0.0 || electric_block;
-  {
-    BlockReader e(top.Child("electric"), "electric", origin);
-    s.electric.max_ca_e =
-        e.Number("max_Ca_E", LeftOpen(0.0, 100.0), 5.0, "largest Ca_E accepted at run time");
-    e.RejectUnknown();
-  }
-  if (s.electric_field) {
-    s.sigma_r = top.Number("sigma_r", Closed(1e-4, 1e4), std::nullopt,
-                           "conductivity ratio sigma- / sigma+ (inside / outside)");
-    s.eps_r = top.Number("eps_r", Closed(1e-4, 1e4), std::nullopt,
-                         "permittivity ratio eps- / eps+ (inside / outside)");
-    // The 3D fast IIM refuses sigma-/sigma+ above its max_inner_ratio (1000: beyond, the flux
-    // balance that fixes the near-null mode of a more conducting inside is not shown to hold);
-    // say so at load, not at step 1.
-    if (three_d && s.sigma_r > 1000.0) {
-      top.Fail("'sigma_r'", "= " + FormatNumber(s.sigma_r) +
-                                " is out of range in 3D: accepted [1e-4, 1000] (the 3D immersed "
-                                "interface solver's max_inner_ratio; docs/electric_solver_3d.md)");
-    }
-    if (s.Ca_E > s.electric.max_ca_e) {
-      top.Fail("'Ca_E'", "= " + FormatNumber(s.Ca_E) + " is out of range: accepted [0, " +
-                             FormatNumber(s.electric.max_ca_e) + "] (electric.max_Ca_E)");
-    }
-  } else {
-    // Accepted (so a scene can be switched on with --set Ca_E=...), checked for range.
-    s.sigma_r = top.Number("sigma_r", Closed(1e-4, 1e4), 1.0, "conductivity ratio");
-    s.eps_r = top.Number("eps_r", Closed(1e-4, 1e4), 1.0, "permittivity ratio");
-  }
-
-  {
-    BlockReader n(top.Child("numerics"), "numerics", origin);
-    s.numerics.tau = n.Number("tau", LeftOpen(0.5, 20.0), 1.0,
-                              "LBM relaxation time of the outer fluid, nu = (tau - 1/2)/3");
-    // 3D default Adams-Bashforth 2: forward Euler turns a tank-treading vertex outwards by
-    // (omega dt)^2 / 2 of its radius per step, which inflated sphere_shear's volume by 7e-5 per
-    // time unit (1.4 % by t = 200); AB2 by 2e-5 (docs/validation_3d.md, "Long runs"). 2D keeps
-    // forward Euler, with which its tables were made.
-    const std::string integrator = n.Choice(
-        "integrator", {"forward_euler", "adams_bashforth2"},
-        std::string(three_d ? "adams_bashforth2" : "forward_euler"), "marker time integration");
-    s.numerics.integrator = integrator == "adams_bashforth2" ? MarkerTimeScheme::kAdamsBashforth2
-                                                             : MarkerTimeScheme::kForwardEuler;
-    s.numerics.membrane_substeps = static_cast<int>(
-        n.Integer("membrane_substeps", 1, 1000, 1, "time-step refinement for a stiff membrane"));
-    s.numerics.electric_every = static_cast<int>(
-        n.Integer("electric_every", 1, 1000000, 1, "solve the potential every n steps"));
-    s.numerics.electric_move_tolerance =
-        n.Number("electric_move_tolerance", Closed(0.0, 10.0), 0.0,
-                 "re-solve when a marker moved more than this (cells); 0 = off");
-    s.numerics.electric_shape_tolerance = n.Number(
-        "electric_shape_tolerance", Closed(0.0, 1.0), 0.0,
-        "3D: re-interpolate the last solve's traction at moved vertices while the surface stays "
-        "within this distance (cells) of that solve's surface; 0 = off");
-    if (!three_d && s.numerics.electric_shape_tolerance > 0.0) {
-      throw SceneError("scene " + origin + ": numerics.electric_shape_tolerance = " +
-                       FormatNumber(s.numerics.electric_shape_tolerance) +
-                       " is built in 3D only (accepted in 2D: 0)");
-    }
-    s.numerics.max_steps = n.Integer("max_steps", 1, 1000000000000L, 1000000, "step cap");
-    s.numerics.t_end = n.Number("t_end", LeftOpen(0.0, 1e6), 10.0,
-                                "default run length in units of the scene's time scale");
-    s.numerics.area_drift_limit =
-        n.Number("area_drift_limit", LeftOpen(0.0, 1.0), 0.05, "watchdog on |A/A0 - 1|");
-    s.numerics.max_mach = n.Number("max_mach", LeftOpen(0.0, 0.5), 0.1,
-                                   "watchdog on the lattice Mach number |u|/c_s");
-    s.numerics.threads =
-        static_cast<int>(n.Integer("threads", 0, 256, 0, "LBM OpenMP threads, 0 = OpenMP default"));
-    s.numerics.redistribute_markers =
-        n.Number("redistribute_markers", Closed(0.0, 1e6), 0.0,
-                 "drops: re-space the markers evenly when max/min spacing exceeds this; 0 = off");
-    s.numerics.marker_filter_every = static_cast<int>(
-        n.Integer("marker_filter_every", 0, 1000000000, 100,
-                  three_d ? "remove the mesh-scale part of the membrane's deformation every n "
-                            "steps (ib/mesh_scale_filter.h); 0 = off"
-                          : "smooth the markers' sawtooth mode every n steps; 0 = off"));
-    s.numerics.mesh_filter_order = static_cast<int>(
-        n.Integer("mesh_filter_order", 1, 32, 8,
-                  "3D: order p of the mesh-scale filter's high-pass (A/mu_max)^p; lower removes "
-                  "longer modes (ib/mesh_scale_filter.h)"));
-    if (!three_d && s.numerics.mesh_filter_order != 8) {
-      throw SceneError("scene " + origin +
-                       ": numerics.mesh_filter_order is 3D only (2D filters the markers' "
-                       "sawtooth mode, ib/sawtooth_filter.h)");
-    }
-    s.numerics.volume_correction_every = static_cast<int>(
-        n.Integer("volume_correction_every", 0, 1000000000, 0,
-                  "3D: restore the enclosed volume to its initial value every n steps by a uniform "
-                  "normal displacement of the vertices (the immersed boundary's leak); 0 = off"));
-    if (!three_d && s.numerics.volume_correction_every > 0) {
-      throw SceneError("scene " + origin +
-                       ": numerics.volume_correction_every is 3D only (the 2D markers' area "
-                       "leak is 1e-5 per unit: docs/validation_3d.md)");
-    }
-    const bool drop_3d = three_d && s.membrane == MembraneKind::kDrop;
-    s.numerics.relax_mesh_every =
-        static_cast<int>(n.Integer("relax_mesh_every", 0, 1000000000, drop_3d ? 100 : 0,
-                                   "3D drops: relax the vertices along the surface every n steps "
-                                   "(geometry/mesh_relaxation.h); 0 = off"));
-    if (s.numerics.relax_mesh_every > 0 && !drop_3d) {
-      throw SceneError("scene " + origin +
-                       ": numerics.relax_mesh_every needs dimension: 3 and membrane: drop (a "
-                       "capsule's vertices are material points of its elastic reference; a 2D "
-                       "drop uses numerics.redistribute_markers)");
-    }
-    if (three_d && s.numerics.redistribute_markers != 0.0) {
-      throw SceneError("scene " + origin +
-                       ": numerics.redistribute_markers is 2D only (a 3D drop's mesh is relaxed "
-                       "along its surface every numerics.relax_mesh_every steps)");
-    }
-    if (s.numerics.redistribute_markers != 0.0 && s.numerics.redistribute_markers <= 1.0) {
-      throw SceneError("scene " + origin + ": numerics.redistribute_markers = " +
-                       std::to_string(s.numerics.redistribute_markers) +
-                       " is out of range: 0 (off) or a spacing ratio > 1");
-    }
-    if (s.numerics.redistribute_markers > 0.0 && s.membrane != MembraneKind::kDrop) {
-      throw SceneError("scene " + origin +
-                       ": numerics.redistribute_markers needs membrane: drop (a capsule's "
-                       "markers are material points of its elastic reference)");
-    }
-    n.RejectUnknown();
-  }
-  top.RejectUnknown();
   return s;
 }
 
+// The conditions the core keys apply under (a condition reads only keys declared above it).
+struct CoreConditions {
+  KeyCondition two_d{"2D", [](const Scene& s) { return s.dimension == 2; }};
+  KeyCondition three_d{"3D", [](const Scene& s) { return s.dimension == 3; }};
+  KeyCondition capsule{"capsule",
+                       [](const Scene& s) { return s.membrane == MembraneKind::kCapsule; }};
+  KeyCondition drop{"drop", [](const Scene& s) { return s.membrane == MembraneKind::kDrop; }};
+  KeyCondition shear{"flow: shear", [](const Scene& s) { return s.has_shear(); }};
+  KeyCondition no_flow{"flow: none", [](const Scene& s) { return !s.has_shear(); }};
+  KeyCondition field{"with a field", [](const Scene& s) { return s.electric_field; }};
+  KeyCondition no_field{"without a field", [](const Scene& s) { return !s.electric_field; }};
+  KeyCondition block{"with an electric: block",
+                     [](const Scene& s) { return s.values.count("electric") > 0; }};
+  KeyCondition no_block{"without an electric: block",
+                        [](const Scene& s) { return s.values.count("electric") == 0; }};
+  KeyCondition ellipse{"shape: ellipse",
+                       [](const Scene& s) { return s.geometry.shape == InitialShape::kEllipse; }};
+  KeyCondition skalak{"law: skalak",
+                      [](const Scene& s) { return s.law == SurfaceLawKind::kSkalak; }};
+};
+
+// Stores into a Scene field.
+auto StoreNumber(double Scene::*field) {
+  return [field](Scene& s, const SceneValue& v) { s.*field = v.number; };
+}
+auto StoreInteger(int Scene::*field) {
+  return [field](Scene& s, const SceneValue& v) { s.*field = static_cast<int>(v.number); };
+}
+auto StoreGeometry(double SceneGeometry::*field) {
+  return [field](Scene& s, const SceneValue& v) { s.geometry.*field = v.number; };
+}
+template <typename T>
+auto StoreNumerics(T SceneNumerics::*field) {
+  return [field](Scene& s, const SceneValue& v) { s.numerics.*field = static_cast<T>(v.number); };
+}
+
+SceneModule ResolutionModule(const CoreConditions& c) {
+  return {
+      "scene",
+      "The dimension and the resolution.",
+      {TextKey("name", "the scene's name (default: the file stem)")
+           .Store([](Scene& s, const SceneValue& v) { s.name = v.text; }),
+       TextKey("description", "one line on what the scene is")
+           .Store([](Scene& s, const SceneValue& v) { s.description = v.text; }),
+       IntegerKey("dimension", 2, 3, "1", "spatial dimension")
+           .Default(2)
+           .Store(StoreInteger(&Scene::dimension)),
+       IntegerKey("N", 16, 4096, "cells", "grid cells across the domain (N^2 nodes)")
+           .Required()
+           .When(c.two_d, "")
+           .Store(StoreInteger(&Scene::N)),
+       IntegerKey("N", 16, 512, "cells",
+                  "grid cells along each axis (N^3 nodes; geometry.half_length sets x and z)")
+           .Required()
+           .When(c.three_d, "")
+           .Store(StoreInteger(&Scene::N)),
+       IntegerKey("M", 8, 100000, "1", "markers on the membrane curve")
+           .Required()
+           .When(c.two_d, "a 3D membrane is a triangulated surface: set mesh_subdivisions instead")
+           .Store(StoreInteger(&Scene::M)),
+       IntegerKey("mesh_subdivisions", 1, 6, "1",
+                  "icosphere subdivisions of the membrane mesh: 3 = 642, 4 = 2562, 5 = 10242 "
+                  "vertices (10 4^k + 2)")
+           .Required()
+           .When(c.three_d, "only dimension: 3 has a triangulated membrane (2D: M)")
+           .Store([](Scene& s, const SceneValue& v) {
+             s.mesh_subdivisions = static_cast<int>(v.number);
+             s.M = 10 * (1 << (2 * s.mesh_subdivisions)) + 2;
+           })},
+      {},
+      {},
+      {}};
+}
+
+SceneModule GeometryModule(const CoreConditions& c) {
+  auto shape = [](Scene& s, const SceneValue& v) {
+    s.geometry.shape = v.text == "circle"    ? InitialShape::kCircle
+                       : v.text == "ellipse" ? InitialShape::kEllipse
+                       : v.text == "sphere"  ? InitialShape::kSphere
+                                             : InitialShape::kBiconcave;
+  };
+  return {
+      "geometry",
+      "The body's initial shape and place, and the box. With shear a body off the centre line "
+      "drifts along x (periodic); the potential's box is not periodic, so with a field the run "
+      "stops, naming the marker and the face, when the body comes within 1 h of an x side.",
+      {BlockKey("geometry",
+                "the initial shape, its place and the box: a block with shape, "
+                "half_width")
+           .Required(),
+       ChoiceKey("geometry.shape", {"circle", "ellipse", "biconcave"},
+                 "initial shape (biconcave: song2019 eq. (152))")
+           .Required()
+           .When(c.two_d, "")
+           .Store(shape),
+       ChoiceKey("geometry.shape", {"sphere", "biconcave"},
+                 "initial 3D shape (biconcave: eq. (152) as a surface of revolution about y)")
+           .Required()
+           .When(c.three_d, "")
+           .Store(shape),
+       NumberKey("geometry.half_width", LeftOpen(1.0, 1000.0), "a",
+                 "L / a: the domain is [-L, L]^2 (3D: the y extent, between the walls)")
+           .Required()
+           .Store(StoreGeometry(&SceneGeometry::half_width)),
+       NumberKey("geometry.half_length", LeftOpen(1.0, 1000.0), "a",
+                 "L_x / a = L_z / a, the half box along the flow and the vorticity; the grid has "
+                 "round(N half_length / half_width) cells there (16 to 4096)")
+           .DefaultFrom("half_width (a cube)",
+                        [](const Scene& s) {
+                          return SceneValue{s.geometry.half_width, {}};
+                        })
+           .When(c.three_d, "a 2D scene's box is [-L, L]^2 (half_width)")
+           .Store(StoreGeometry(&SceneGeometry::half_length)),
+       NumberKey("geometry.aspect_ratio", LeftOpen(0.0, 1.0), "1",
+                 "minor / major semi-axis of the initial ellipse (x-major, area pi a^2)")
+           .Required()
+           .When(c.ellipse, "only shape: ellipse has an aspect ratio")
+           .Store(StoreGeometry(&SceneGeometry::aspect_ratio)),
+       NumberKey("geometry.center_x", Closed(-1000, 1000), "a", "initial x offset of the centre")
+           .Default(0.0)
+           .Store(StoreGeometry(&SceneGeometry::center_x)),
+       NumberKey("geometry.center_y", Closed(-1000, 1000), "a", "initial y offset of the centre")
+           .Default(0.0)
+           .Store(StoreGeometry(&SceneGeometry::center_y)),
+       NumberKey("geometry.center_z", Closed(-1000, 1000), "a", "initial z offset of the centre")
+           .Default(0.0)
+           .When(c.three_d, "a 2D scene has no z axis")
+           .Otherwise(0.0)
+           .Store(StoreGeometry(&SceneGeometry::center_z))},
+      {},
+      {},
+      {}};
+}
+
+SceneModule MembraneModule(const CoreConditions& c) {
+  return {
+      "membrane",
+      "The membrane's law and the inner fluid. T below is the scene's tension scale: E_s for a 2D "
+      "capsule, the shear modulus G_s for a 3D capsule (song2019 and Ramanujan & Pozrikidis "
+      "write "
+      "E_s = 3 G_s; docs/validation_3d.md), gamma for a drop.",
+      {ChoiceKey("membrane", {"capsule", "drop"},
+                 "membrane model: capsule (2D: Hookean E_s, plus Kelvin-Voigt when eta > 0 and "
+                 "bending when E_b > 0; 3D: `law`) or drop (interfacial tension gamma)")
+           .Required()
+           .Store([](Scene& s, const SceneValue& v) {
+             s.membrane = v.text == "drop" ? MembraneKind::kDrop : MembraneKind::kCapsule;
+           }),
+       ChoiceKey("law", {"neo_hookean", "zero_thickness", "skalak"},
+                 "3D membrane law (song2019 eqs. (137)-(139); membrane/surface_elasticity.h)")
+           .Required()
+           .When(c.three_d && c.capsule,
+                 "only a 3D capsule has a finite-element law (a drop has a surface tension only; "
+                 "a 2D capsule has its own: Hookean fibre, E_b, eta)")
+           .Store([](Scene& s, const SceneValue& v) {
+             s.law = v.text == "skalak"           ? SurfaceLawKind::kSkalak
+                     : v.text == "zero_thickness" ? SurfaceLawKind::kZeroThickness
+                                                  : SurfaceLawKind::kNeoHookean;
+           }),
+       NumberKey("C", LeftOpen(0.0, 1e6), "1",
+                 "Skalak area-dilation to shear modulus ratio (song2019: 15 for the red cell)")
+           .Required()
+           .When(c.three_d && c.capsule && c.skalak,
+                 "only law: skalak has an area-dilation modulus")
+           .Store(StoreNumber(&Scene::area_dilation)),
+       NumberKey("c0", Closed(-100.0, 100.0), "1/a",
+                 "spontaneous curvature times a (Helfrich bending, eq. (144))")
+           .Default(0.0)
+           .When(c.three_d && c.capsule, "only a 3D capsule has a spontaneous curvature")
+           .Otherwise(0.0)
+           .Store(StoreNumber(&Scene::c0)),
+       NumberKey("E_b", Closed(0.0, 10.0), "1", "bending modulus E_B / (a^2 T), eq. (120)")
+           .Required()
+           .When(c.capsule, "a drop has no bending (needs membrane: capsule)")
+           .Otherwise(0.0)
+           .Store(StoreNumber(&Scene::E_b)),
+       NumberKey("eta", Closed(0.0, 100.0), "1",
+                 "membrane viscosity mu_s / (a mu), eq. (121) (Kelvin-Voigt)")
+           .Required()
+           .When(c.two_d && c.capsule,
+                 "membrane viscosity is built for 2D capsules only (a drop has none; 3D not yet)")
+           .Otherwise(0.0)
+           .Store(StoreNumber(&Scene::eta)),
+       NumberKey("prestress", Closed(0.0, 10.0), "1",
+                 "isotropic pre-tension tau_p / E_s: tau = tau_p + E_s (lambda - 1) (not in "
+                 "song2019)")
+           .Default(0.0)
+           .When(c.two_d && c.capsule,
+                 "a prestress is built for 2D capsules only (a drop has none; 3D not yet)")
+           .Otherwise(0.0)
+           .Store(StoreNumber(&Scene::prestress)),
+       NumberKey("V", Closed(0.01, 100.0), "1", "viscosity ratio mu_inside / mu_outside (sec. 5.4)")
+           .Required()
+           .When(c.two_d, "a viscosity contrast is not built in 3D yet")
+           .Otherwise(1.0)
+           .Store(StoreNumber(&Scene::V))},
+      {"membrane", "viscosity (V != 1)"},
+      {"the membrane force source; D, theta, the area or volume drift in the state and CSV"},
+      {}};
+}
+
+SceneModule FlowModule(const CoreConditions& c) {
+  return {
+      "flow",
+      "The imposed flow and the time scale.",
+      {ChoiceKey("flow", {"shear", "none"},
+                 "imposed flow: shear (walls at y = +-L moving at +-k L, fluid initially "
+                 "u = (k y, 0), periodic in x) or none (closed box at rest)")
+           .Required()
+           .Store([](Scene& s, const SceneValue& v) {
+             s.flow = v.text == "none" ? FlowKind::kNone : FlowKind::kShear;
+           }),
+       NumberKey("Ca", LeftOpen(0.0, 10.0), "1", "capillary number mu k a / T, eq. (119)")
+           .Required()
+           .When(c.shear, "there is no shear rate with flow: none (use Oh)")
+           .Store(StoreNumber(&Scene::Ca)),
+       NumberKey("Re", LeftOpen(0.0, 100.0), "1", "Reynolds number rho k a^2 / mu (sec. 4.1: 0.05)")
+           .Required()
+           .When(c.shear, "there is no shear rate with flow: none (use Oh)")
+           .Store(StoreNumber(&Scene::Re)),
+       NumberKey("max_Ca", LeftOpen(0.0, 10.0), "1",
+                 "largest Ca accepted at run time (SetCa, the node's live Ca): the scene's "
+                 "measured limit; the scene's own Ca must not exceed it")
+           .Default(10.0)
+           .When(c.shear, "there is no shear rate with flow: none")
+           .Store(StoreNumber(&Scene::max_Ca)),
+       NumberKey("Oh", LeftOpen(0.0, 100.0), "1",
+                 "Ohnesorge number mu / sqrt(rho a T) (sec. 4.2.2: 1)")
+           .Required()
+           .When(c.no_flow, "Oh sets the time scale only without shear (flow: none); use Ca and Re")
+           .Store(StoreNumber(&Scene::Oh))},
+      {"fluid"},
+      {"the velocity field (~field), Ca in the state"},
+      [](const Scene& s, const SceneFail& fail) {
+        if (s.has_shear() && s.Ca > s.max_Ca) {
+          fail("'Ca' = " + FormatNumber(s.Ca) + " is out of range: accepted (0, " +
+               FormatNumber(s.max_Ca) + "] (max_Ca)");
+        }
+      }};
+}
+
+SceneModule ElectricModule(const CoreConditions& c) {
+  auto store_ca_e = [](Scene& s, const SceneValue& v) {
+    s.Ca_E = v.number;
+    s.electric_field = s.Ca_E > 0.0 || s.values.count("electric") > 0;
+  };
+  return {
+      "electric",
+      "The leaky-dielectric field (song2019 sec. 4.2, ch. 6): built iff Ca_E > 0 or an electric: "
+      "block is present (an empty block with Ca_E: 0 builds it off, to be turned up live). 2D: "
+      "E_inf along y; 3D: along z, phi = E z on the z faces, Neumann on the others.",
+      {BlockKey("electric", "the field's run-time limits; its presence builds the field"),
+       NumberKey("electric.max_Ca_E", LeftOpen(0.0, 100.0), "1",
+                 "largest Ca_E accepted at run time (SetCaE, dynamic_reconfigure)")
+           .Default(5.0)
+           .Store([](Scene& s, const SceneValue& v) { s.electric.max_ca_e = v.number; }),
+       NumberKey("Ca_E", Closed(0.0, 100.0), "1",
+                 "electric capillary number eps+ a E^2 / T (sec. 4.2.2, 5.1; required with an "
+                 "electric: block: 0 starts the field off, to be turned up live)")
+           .Required()
+           .When(c.block, "")
+           .Store(store_ca_e),
+       NumberKey("Ca_E", Closed(0.0, 100.0), "1",
+                 "electric capillary number eps+ a E^2 / T (sec. 4.2.2, 5.1)")
+           .Default(0.0)
+           .When(c.no_block, "")
+           .Store(store_ca_e),
+       NumberKey("sigma_r", Closed(1e-4, 1e4), "1",
+                 "conductivity ratio sigma- / sigma+ (inside / outside)")
+           .Required()
+           .When(c.field && c.two_d, "")
+           .Store(StoreNumber(&Scene::sigma_r)),
+       NumberKey("sigma_r", Closed(1e-4, 1000.0), "1",
+                 "conductivity ratio sigma- / sigma+ (inside / outside); at most the 3D immersed "
+                 "interface solver's max_inner_ratio (docs/electric_solver_3d.md)")
+           .Required()
+           .When(c.field && c.three_d, "")
+           .Store(StoreNumber(&Scene::sigma_r)),
+       NumberKey("sigma_r", Closed(1e-4, 1e4), "1",
+                 "conductivity ratio (read so that --set Ca_E=... can switch the field on)")
+           .Default(1.0)
+           .When(c.no_field, "")
+           .Store(StoreNumber(&Scene::sigma_r)),
+       NumberKey("eps_r", Closed(1e-4, 1e4), "1",
+                 "permittivity ratio eps- / eps+ (inside / outside)")
+           .Required()
+           .When(c.field, "")
+           .Store(StoreNumber(&Scene::eps_r)),
+       NumberKey("eps_r", Closed(1e-4, 1e4), "1", "permittivity ratio (as sigma_r)")
+           .Default(1.0)
+           .When(c.no_field, "")
+           .Store(StoreNumber(&Scene::eps_r))},
+      {"electric"},
+      {"the electric force source; fe_x, fe_y (fe_z), d_field, gmres_iterations, the potential "
+       "(~field potential)"},
+      [](const Scene& s, const SceneFail& fail) {
+        if (s.electric_field && s.Ca_E > s.electric.max_ca_e) {
+          fail("'Ca_E' = " + FormatNumber(s.Ca_E) + " is out of range: accepted [0, " +
+               FormatNumber(s.electric.max_ca_e) + "] (electric.max_Ca_E)");
+        }
+      }};
+}
+
+SceneModule NumericsModule(const CoreConditions& c) {
+  auto integrator = [](Scene& s, const SceneValue& v) {
+    s.numerics.integrator = v.text == "adams_bashforth2" ? MarkerTimeScheme::kAdamsBashforth2
+                                                         : MarkerTimeScheme::kForwardEuler;
+  };
+  const KeyCondition drop_3d = c.three_d && c.drop;
+  return {
+      "numerics",
+      "The lattice, the markers' time integration, the electric re-solve policy, the watchdogs.",
+      {BlockKey("numerics", "numerical settings (all optional)"),
+       NumberKey("numerics.tau", LeftOpen(0.5, 20.0), "1",
+                 "LBM relaxation time of the outer fluid, nu = (tau - 1/2) / 3")
+           .Default(1.0)
+           .Store(StoreNumerics(&SceneNumerics::tau)),
+       ChoiceKey("numerics.integrator", {"forward_euler", "adams_bashforth2"},
+                 "marker time integration (2D tables were made with forward Euler)")
+           .Default("forward_euler")
+           .When(c.two_d, "")
+           .Store(integrator),
+       ChoiceKey("numerics.integrator", {"forward_euler", "adams_bashforth2"},
+                 "vertex time integration (Euler's outward drift of a tank-treading vertex "
+                 "inflated sphere_shear by 7e-5 per time unit, AB2's by 2e-5)")
+           .Default("adams_bashforth2")
+           .When(c.three_d, "")
+           .Store(integrator),
+       IntegerKey("numerics.membrane_substeps", 1, 1000, "1",
+                  "time-step refinement n for a stiff membrane: nu -> nu / n, k -> k / n, n "
+                  "times the steps per time unit")
+           .Default(1)
+           .Store(StoreNumerics(&SceneNumerics::membrane_substeps)),
+       IntegerKey("numerics.electric_every", 1, 1000000, "steps",
+                  "with a field: solve the potential every n steps (docs/validation_ehd.md sec. 5)")
+           .Default(1)
+           .Store(StoreNumerics(&SceneNumerics::electric_every)),
+       NumberKey("numerics.electric_move_tolerance", Closed(0.0, 10.0), "cells",
+                 "with a field: ... or as soon as a marker moved more than this since the last "
+                 "solve; 0 = off")
+           .Default(0.0)
+           .Store(StoreNumerics(&SceneNumerics::electric_move_tolerance)),
+       NumberKey("numerics.electric_shape_tolerance", Closed(0.0, 1.0), "cells",
+                 "with a field: re-interpolate the last solve's traction at moved vertices while "
+                 "the surface stays within this distance of that solve's surface (tank-treading); "
+                 "0 = off (docs/validation_3d_ehd.md)")
+           .Default(0.0)
+           .When(c.three_d, "built in 3D only")
+           .Otherwise(0.0)
+           .Store(StoreNumerics(&SceneNumerics::electric_shape_tolerance)),
+       IntegerKey("numerics.max_steps", 1, 1000000000000L, "steps", "step cap of `ehd_sim run`")
+           .Default(1000000)
+           .Store(StoreNumerics(&SceneNumerics::max_steps)),
+       NumberKey(
+           "numerics.t_end", LeftOpen(0.0, 1e6), "time unit",
+           "default run length, in the scene's time unit (1/k with shear, mu a / T without)")
+           .Default(10.0)
+           .Store(StoreNumerics(&SceneNumerics::t_end)),
+       NumberKey("numerics.area_drift_limit", LeftOpen(0.0, 1.0), "1",
+                 "watchdog on |A/A0 - 1| (3D: the volume)")
+           .Default(0.05)
+           .Store(StoreNumerics(&SceneNumerics::area_drift_limit)),
+       NumberKey("numerics.max_mach", LeftOpen(0.0, 0.5), "1",
+                 "watchdog on the lattice Mach number |u| / c_s")
+           .Default(0.1)
+           .Store(StoreNumerics(&SceneNumerics::max_mach)),
+       IntegerKey("numerics.threads", 0, 256, "1",
+                  "LBM OpenMP threads, 0 = OpenMP default (1 is often faster for N <= 128 on a "
+                  "shared machine)")
+           .Default(0)
+           .Store(StoreNumerics(&SceneNumerics::threads)),
+       NumberKey("numerics.redistribute_markers", Closed(0.0, 1e6), "1",
+                 "0 (off) or a spacing ratio r > 1: when the largest / smallest marker spacing "
+                 "exceeds r the markers are re-spaced evenly along the curve (docs/coupling.md)")
+           .Default(0.0)
+           .When(c.two_d && c.drop,
+                 "2D drops only (a capsule's markers are material points of its elastic "
+                 "reference; a 3D drop's mesh is relaxed along its surface every "
+                 "numerics.relax_mesh_every steps)")
+           .Otherwise(0.0)
+           .Store(StoreNumerics(&SceneNumerics::redistribute_markers)),
+       IntegerKey("numerics.marker_filter_every", 0, 1000000000, "steps",
+                  "2D: remove the markers' sawtooth mode every n steps (ib/sawtooth_filter.h); "
+                  "3D: the mesh-scale part of the deformation (ib/mesh_scale_filter.h); 0 = off "
+                  "(docs/coupling.md, \"Long runs\")")
+           .Default(100)
+           .Store(StoreNumerics(&SceneNumerics::marker_filter_every)),
+       IntegerKey("numerics.mesh_filter_order", 1, 32, "1",
+                  "order p of the mesh-scale filter's high-pass (A/mu_max)^p; lower removes "
+                  "longer modes (ib/mesh_scale_filter.h)")
+           .Default(8)
+           .When(c.three_d, "3D only (2D filters the markers' sawtooth mode, ib/sawtooth_filter.h)")
+           .Otherwise(8)
+           .Store(StoreNumerics(&SceneNumerics::mesh_filter_order)),
+       IntegerKey("numerics.volume_correction_every", 0, 1000000000, "steps",
+                  "restore the enclosed volume every n steps by a uniform normal displacement of "
+                  "the vertices (the immersed boundary's leak); 0 = off")
+           .Default(0)
+           .When(c.three_d,
+                 "3D only (the 2D markers' area leak is 1e-5 per unit: "
+                 "docs/validation_3d.md)")
+           .Otherwise(0)
+           .Store(StoreNumerics(&SceneNumerics::volume_correction_every)),
+       IntegerKey("numerics.relax_mesh_every", 0, 1000000000, "steps",
+                  "relax a drop's vertices along its surface every n steps "
+                  "(geometry/mesh_relaxation.h); 0 = off")
+           .Default(100)
+           .When(drop_3d,
+                 "needs dimension: 3 and membrane: drop (a capsule's vertices are material points "
+                 "of its elastic reference; a 2D drop uses numerics.redistribute_markers)")
+           .Otherwise(0)
+           .Store(StoreNumerics(&SceneNumerics::relax_mesh_every))},
+      {"marker", "diagnostics"},
+      {"the CSV and state columns of every scene (docs/scenes.md)"},
+      [](const Scene& s, const SceneFail& fail) {
+        const double r = s.numerics.redistribute_markers;
+        if (r != 0.0 && r <= 1.0) {
+          fail("'numerics.redistribute_markers' = " + FormatNumber(r) +
+               " is out of range: 0 (off) or a spacing ratio > 1");
+        }
+      }};
+}
+
+// The scene library's own modules, in the order their keys are read.
+std::vector<SceneModule> CoreModules() {
+  const CoreConditions c;
+  return {ResolutionModule(c), GeometryModule(c), MembraneModule(c),
+          FlowModule(c),       ElectricModule(c), NumericsModule(c)};
+}
+
 }  // namespace
+
+std::vector<SceneModule> CoreSceneModules() { return CoreModules(); }
 
 const char* ToString(InitialShape shape) {
   switch (shape) {
@@ -543,6 +743,16 @@ const char* ToString(SurfaceLawKind law) {
 }
 const char* ToString(MarkerTimeScheme scheme) {
   return scheme == MarkerTimeScheme::kAdamsBashforth2 ? "adams_bashforth2" : "forward_euler";
+}
+
+double Scene::Number(const std::string& path) const {
+  const auto it = values.find(path);
+  if (it == values.end()) {
+    throw std::logic_error("scene " + name + ": key '" + path +
+                           "' was not read (not declared, "
+                           "or it does not apply to this scene)");
+  }
+  return it->second.number;
 }
 
 std::string SceneDirectory() { return EHD_SCENE_DIR; }

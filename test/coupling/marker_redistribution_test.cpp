@@ -87,7 +87,8 @@ numerics: {redistribute_markers: 2}
     ParseScene(capsule);
     FAIL() << "a capsule accepted numerics.redistribute_markers";
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("redistribute_markers needs membrane: drop"),
+    EXPECT_NE(std::string(e.what()).find(
+                  "not accepted here: 2D drops only (a capsule's markers are material"),
               std::string::npos)
         << e.what();
   }

@@ -407,16 +407,17 @@ TEST(Simulation3D, SceneKeysAreValidatedForThreeDimensions) {
   refused({"M=64"}, "mesh_subdivisions");
   refused({"V=2"}, "viscosity contrast is not built in 3D");
   refused({"Ca_E=0.1"}, "sigma_r");
-  refused({"Ca_E=0.1", "sigma_r=2000", "eps_r=2"}, "out of range in 3D: accepted [1e-4, 1000]");
+  refused({"Ca_E=0.1", "sigma_r=2000", "eps_r=2"}, "accepted [0.0001, 1000]");
   refused({"membrane=drop"}, "surface tension only");
   refused({"geometry.shape=circle"}, "sphere | biconcave");
   refused({"law=skalak"}, "'C' missing");
   refused({"C=10"}, "only law: skalak");
   refused({"mesh_subdivisions=9"}, "out of range");
   refused({"numerics.relax_mesh_every=10"},
-          "relax_mesh_every needs dimension: 3 and membrane: drop");
+          "'numerics.relax_mesh_every' = '10' is not accepted here: needs dimension: 3 and "
+          "membrane: drop");
   refused({"membrane=drop", "law=", "E_b=", "numerics.redistribute_markers=2"},
-          "redistribute_markers is 2D only");
+          "'numerics.redistribute_markers' = '2' is not accepted here: 2D drops only");
   // A mesh too coarse for the grid (edges > 2 h) is refused naming the subdivision needed.
   try {
     Simulation coarse(ParseScene(kTinySphere, {"mesh_subdivisions=1", "N=48"}));
@@ -445,9 +446,11 @@ flow: shear
       EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
     }
   };
-  refused_2d("law=skalak", "dimension: 3");
-  refused_2d("numerics.mesh_filter_order=4", "mesh_filter_order is 3D only");
-  refused_2d("numerics.volume_correction_every=100", "volume_correction_every is 3D only");
+  refused_2d("law=skalak", "only a 3D capsule has a finite-element law");
+  refused_2d("numerics.mesh_filter_order=4",
+             "'numerics.mesh_filter_order' = '4' is not accepted here: 3D only");
+  refused_2d("numerics.volume_correction_every=100",
+             "'numerics.volume_correction_every' = '100' is not accepted here: 3D only");
   {  // the 3D filter's order reaches the stage
     Simulation filtered(ParseScene(kTinySphere, {"numerics.mesh_filter_order=4"}));
     EXPECT_NE(filtered.Pipeline().find("(order 4)"), std::string::npos) << filtered.Pipeline();

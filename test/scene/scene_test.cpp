@@ -208,5 +208,51 @@ TEST(Units, MachLimitFailsEarly) {
   }
 }
 
+// The typed declarations (scene/scene_keys.h): each rule a key follows can fail.
+TEST(SceneKeys, TypesNullsConditionsAndOffValues) {
+  // An integer key refuses 3.5, a number refuses text, a choice refuses another word.
+  ExpectSceneError(kMinimalCapsule, {"numerics.membrane_substeps=3.5"},
+                   {"'numerics.membrane_substeps'", "expected an integer in [1, 1000]", "'3.5'"});
+  ExpectSceneError(kMinimalCapsule, {"Ca=fast"}, {"'Ca'", "expected a number in (0, 10]"});
+  ExpectSceneError(kMinimalCapsule, {"flow=couette"}, {"'flow'", "one of shear | none"});
+  // A scalar written without a value is an error, not its default.
+  ExpectSceneError(std::string(kMinimalCapsule) + "numerics:\n  tau:\n", {},
+                   {"'numerics.tau'", "is empty", "delete the line for the default (1)"});
+  // Where a key does not apply it is refused with its reason, except its "off" value.
+  ExpectSceneError(kMinimalCapsule, {"membrane=drop", "E_b=0.1"},
+                   {"'E_b'", "not accepted here", "a drop has no bending", "(accepted here: 0)"});
+  EXPECT_NO_THROW(ParseScene(kMinimalCapsule, {"membrane=drop", "E_b=0", "eta=0"}));
+  ExpectSceneError(kMinimalCapsule, {"Oh=1"}, {"'Oh'", "not accepted here", "use Ca and Re"});
+  // Rows of one key under disjoint conditions: N's range follows the dimension.
+  EXPECT_NO_THROW(ParseScene(kMinimalCapsule, {"N=1024"}));
+  ExpectSceneError(kMinimalCapsule,
+                   {"dimension=3", "M=", "mesh_subdivisions=2", "N=1024", "geometry.shape=sphere",
+                    "law=neo_hookean", "eta=0"},
+                   {"'N'", "accepted [16, 512]"});
+  // A field scene's Ca_E cannot be lost: with an electric: block it is required.
+  ExpectSceneError(kMinimalCapsule, {"electric={}", "sigma_r=2", "eps_r=1"},
+                   {"'Ca_E' missing", "required with an electric: block"});
+  const Scene off = ParseScene(kMinimalCapsule, {"electric={}", "Ca_E=0", "sigma_r=2", "eps_r=1"});
+  EXPECT_TRUE(off.electric_field);
+  EXPECT_EQ(off.Ca_E, 0.0);
+  // Every key read is in Scene::values, defaults included.
+  EXPECT_EQ(off.Number("numerics.tau"), 1.0);
+  EXPECT_EQ(off.Number("electric.max_Ca_E"), 5.0);
+  EXPECT_THROW(off.Number("no.such.key"), std::logic_error);
+}
+
+TEST(SceneKeys, AModuleCannotRedeclareAKey) {
+  SceneModule m;
+  m.name = "test_duplicate";
+  m.doc = "declares a key the flow module owns";
+  m.keys.push_back(NumberKey("Ca", LeftOpen(0, 1), "1", "again"));
+  try {
+    RegisterSceneModule(m);
+    FAIL() << "registered a second 'Ca'";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'Ca'"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace ehd

@@ -12,15 +12,19 @@
 //   Ca_E  = eps+ a E^2 / T                                            sec. 4.2.2 and 5.1
 //   sigma_r = sigma- / sigma+, eps_r = eps- / eps+ (inside / outside) sec. 4.2
 // plus the resolution (N grid cells across the domain, M markers), the geometry, the membrane
-// model, the flow, the electric field and the numerics. LoadScene validates everything: an
-// unknown key, a missing key, a wrong type or an out-of-range value throws SceneError naming the
-// key, the value and the accepted range. Nothing here depends on the solvers; units.h turns a
-// Scene into lattice values.
+// model, the flow, the electric field and the numerics. The keys are declared by modules
+// (scene/scene_keys.h; the table in docs/scene_keys.md is generated from them) and LoadScene reads
+// a scene from those declarations alone: an unknown key, a missing key, a wrong type or an
+// out-of-range value throws SceneError naming the key, the value and the accepted range. Nothing
+// here depends on the solvers; units.h turns a Scene into lattice values.
 #pragma once
 
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "ehd_capsule/scene/scene_keys.h"
 
 namespace ehd {
 
@@ -134,6 +138,13 @@ struct Scene {
   bool electric_field = false;  // Ca_E > 0 or an explicit `electric:` block
   SceneElectric electric;
   SceneNumerics numerics;
+  // Every key read, by path, with its value or default (blocks: present). The scene library's own
+  // keys are also in the fields above; a module outside it (a force term) reads its own here.
+  std::map<std::string, SceneValue> values;
+  // The value of a key that was read (a declared key with a default, or a given one); throws
+  // std::logic_error naming the path otherwise.
+  double Number(const std::string& path) const;
+  bool Has(const std::string& path) const { return values.count(path) > 0; }
 
   bool has_shear() const { return flow == FlowKind::kShear; }
   bool has_bending() const { return membrane == MembraneKind::kCapsule && E_b > 0.0; }
