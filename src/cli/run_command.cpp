@@ -220,6 +220,90 @@ void WriteSummaryJson(const RunOptions& o, const Simulation* sim, const RunEnd& 
   }
 }
 
+// The membrane's section in the shear plane about the centroid, in units of a (--sections): the
+// markers in 2D, the cut z = z_centroid of the mesh in 3D.
+class SectionWriter {
+ public:
+  SectionWriter(const std::string& path, bool append) {
+    if (path.empty()) return;
+    file_ = std::fopen(path.c_str(), append ? "a" : "w");
+    if (file_ == nullptr) throw UsageError("--sections: cannot write '" + path + "'");
+    if (!append) std::fprintf(file_, "step,t,point,x,y\n");
+  }
+  ~SectionWriter() { Close(); }
+  bool open() const { return file_ != nullptr; }
+  void Close() {
+    if (file_ != nullptr) std::fclose(file_);
+    file_ = nullptr;
+  }
+  void Write(const Simulation& sim) {
+    if (file_ == nullptr) return;
+    const SimulationState& s = sim.state();
+    const Eigen::Vector3d c = s.markers.rowwise().mean();
+    const double a = sim.units().radius;
+    std::vector<Eigen::Vector2d> points;
+    if (sim.dimension() == 3) {
+      std::vector<TriangleMesh::Triangle> triangles;
+      for (const auto& t : sim.triangles()) triangles.push_back({t[0], t[1], t[2]});
+      const TriangleMesh mesh(s.markers, triangles);
+      const Eigen::Vector3d centroid = Centroid(mesh);
+      points = CrossSectionZ(mesh, centroid.z());
+      for (auto& p : points) p -= centroid.head<2>();
+    } else {
+      for (int k = 0; k < s.markers.cols(); ++k)
+        points.push_back(s.markers.col(k).head<2>() - c.head<2>());
+    }
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      std::fprintf(file_, "%ld,%.10g,%zu,%.8g,%.8g\n", s.step, s.time, k, points[k].x() / a,
+                   points[k].y() / a);
+    }
+    std::fflush(file_);
+  }
+
+ private:
+  std::FILE* file_ = nullptr;
+};
+
+// Where the time went, stage by stage (wall time of each stage's part of the step).
+void PrintStageShares(const Simulation& sim) {
+  double total = 0.0;
+  for (const auto& t : sim.StageTimes()) total += t.seconds;
+  if (total <= 0.0) return;
+  std::printf("time per stage:");
+  for (const auto& t : sim.StageTimes()) {
+    std::printf(" %s %.1f%%", t.name.c_str(), 100.0 * t.seconds / total);
+  }
+  std::printf("\n");
+}
+
+// How a run that did not fail ended (--summary-json's status and reason, the exit status).
+RunEnd DecideRunEnd(const RunOptions& o, const Simulation& sim, double t_end, long max_steps,
+                    bool steady, bool capped) {
+  RunEnd end{"completed", "reached the end", 0};
+  if (o.steps > 0) {
+    end.reason = "reached " + std::to_string(o.steps) + " steps";
+  } else if (steady) {
+    end = {"steady", "D_xy and theta steady to " + FormatValue(o.steady_tol), 0};
+  } else if (!capped) {
+    end.reason = "reached t = " + FormatValue(t_end);
+  }
+  if (!capped && o.steady_tol > 0 && !steady) {
+    end = {
+        "not_steady",
+        "not steady to " + FormatValue(o.steady_tol) + " by t = " + FormatValue(sim.state().time),
+        0};
+  }
+  if (capped) {
+    std::ostringstream why;
+    why << "stopped at the step cap numerics.max_steps = " << max_steps
+        << " at t = " << sim.state().time << " before t = " << t_end
+        << " (raise numerics.max_steps, or give --until T)";
+    std::cerr << "ehd_sim run: " << why.str() << '\n';
+    end = {"step_cap", why.str(), 1};
+  }
+  return end;
+}
+
 int RunScene(const std::vector<std::string>& args) {
   const RunOptions o = ParseRunOptions(args);
   const std::string &csv_path = o.csv_path, &vtk_dir = o.vtk_dir,
@@ -278,36 +362,8 @@ int RunScene(const std::vector<std::string>& args) {
     csv = std::make_unique<TimeSeriesCsv>(csv_path, sim, !restart_path.empty());
     if (restart_path.empty()) csv->Write(sim);
   }
-  std::FILE* sections = nullptr;
-  if (!sections_path.empty()) {
-    sections = std::fopen(sections_path.c_str(), restart_path.empty() ? "w" : "a");
-    if (sections == nullptr) throw UsageError("--sections: cannot write '" + sections_path + "'");
-    if (restart_path.empty()) std::fprintf(sections, "step,t,point,x,y\n");
-  }
-  // The shear-plane section about the centroid, in units of a.
-  auto write_section = [&]() {
-    if (sections == nullptr) return;
-    const SimulationState& s = sim.state();
-    const Eigen::Vector3d c = s.markers.rowwise().mean();
-    const double a = sim.units().radius;
-    std::vector<Eigen::Vector2d> points;
-    if (sim.dimension() == 3) {
-      std::vector<TriangleMesh::Triangle> triangles;
-      for (const auto& t : sim.triangles()) triangles.push_back({t[0], t[1], t[2]});
-      const TriangleMesh mesh(s.markers, triangles);
-      const Eigen::Vector3d centroid = Centroid(mesh);
-      points = CrossSectionZ(mesh, centroid.z());
-      for (auto& p : points) p -= centroid.head<2>();
-    } else {
-      for (int k = 0; k < s.markers.cols(); ++k)
-        points.push_back(s.markers.col(k).head<2>() - c.head<2>());
-    }
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      std::fprintf(sections, "%ld,%.10g,%zu,%.8g,%.8g\n", s.step, s.time, k, points[k].x() / a,
-                   points[k].y() / a);
-    }
-    std::fflush(sections);
-  };
+  SectionWriter sections(sections_path, !restart_path.empty());
+  auto write_section = [&]() { sections.Write(sim); };
   if (restart_path.empty()) write_section();
   std::unique_ptr<VtkSeries> vtk;
   if (!vtk_dir.empty()) {
@@ -359,7 +415,7 @@ int RunScene(const std::vector<std::string>& args) {
     std::cerr << "ehd_sim run: simulation stopped: " << e.what() << '\n';
     if (csv) csv->Write(sim);
     write_section();
-    if (sections != nullptr) std::fclose(sections);
+    sections.Close();
     const auto [wall_s, cpu_s] = seconds();
     WriteSummaryJson(o, &sim, {"simulation_error", e.what(), 1}, wall_s, cpu_s,
                      sim.state().step - first_step);
@@ -367,10 +423,8 @@ int RunScene(const std::vector<std::string>& args) {
   }
   if (csv && sim.state().step % csv_every != 0) csv->Write(sim);
   if (!checkpoint_path.empty()) sim.Save(checkpoint_path);
-  if (sections != nullptr) {
-    if (sim.state().step % sections_every != 0) write_section();
-    std::fclose(sections);
-  }
+  if (sections.open() && sim.state().step % sections_every != 0) write_section();
+  sections.Close();
   progress("final: ");
   const bool capped = steps <= 0 && !steady && sim.state().time < t_end - 1e-12;
   const double wall =
@@ -378,18 +432,7 @@ int RunScene(const std::vector<std::string>& args) {
   const long taken = sim.state().step - first_step;
   std::printf("%ld steps in %.2f s (%.3g ms/step)\n", taken, wall,
               taken > 0 ? 1e3 * wall / taken : 0.0);
-  if (!quiet && taken > 0) {
-    // Where the time went, stage by stage (wall time of each stage's part of the step).
-    double total = 0.0;
-    for (const auto& t : sim.StageTimes()) total += t.seconds;
-    if (total > 0.0) {
-      std::printf("time per stage:");
-      for (const auto& t : sim.StageTimes()) {
-        std::printf(" %s %.1f%%", t.name.c_str(), 100.0 * t.seconds / total);
-      }
-      std::printf("\n");
-    }
-  }
+  if (!quiet && taken > 0) PrintStageShares(sim);
   if (steady_tol > 0) {
     if (steady) {
       std::printf(
@@ -405,27 +448,7 @@ int RunScene(const std::vector<std::string>& args) {
     std::cout << "VTK: " << vtk_dir << "/fluid.pvd, " << vtk_dir << "/membrane.pvd ("
               << vtk->frames() << " frames)\n";
   if (!checkpoint_path.empty()) std::cout << "checkpoint: " << checkpoint_path << '\n';
-  RunEnd end{"completed", "reached the end", 0};
-  if (steps > 0) {
-    end.reason = "reached " + std::to_string(steps) + " steps";
-  } else if (steady) {
-    end = {"steady", "D_xy and theta steady to " + FormatValue(steady_tol), 0};
-  } else if (!capped) {
-    end.reason = "reached t = " + FormatValue(t_end);
-  }
-  if (!capped && steady_tol > 0 && !steady) {
-    end = {"not_steady",
-           "not steady to " + FormatValue(steady_tol) + " by t = " + FormatValue(sim.state().time),
-           0};
-  }
-  if (capped) {
-    std::ostringstream why;
-    why << "stopped at the step cap numerics.max_steps = " << max_steps
-        << " at t = " << sim.state().time << " before t = " << t_end
-        << " (raise numerics.max_steps, or give --until T)";
-    std::cerr << "ehd_sim run: " << why.str() << '\n';
-    end = {"step_cap", why.str(), 1};
-  }
+  const RunEnd end = DecideRunEnd(o, sim, t_end, max_steps, steady, capped);
   const auto [wall_s, cpu_s] = seconds();
   WriteSummaryJson(o, &sim, end, wall_s, cpu_s, taken);
   return end.exit_status;
