@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ehd_capsule/ros/shutdown_request.h"
+
 namespace ehd::ros_node {
 
 std::string FormatProgressLine(const SimulationState& s, const std::string& time_unit,
@@ -232,7 +234,9 @@ RunStatus RunController::Status() const {
     case RunState::kPaused:
       return {false, "paused"};
     case RunState::kFinished:
-      return {false, "finished"};
+      return {false, end_reason_.empty() ? "finished" : "finished: " + end_reason_};
+    case RunState::kStopped:
+      return {false, "stopped: " + end_reason_};
     case RunState::kFailed:
       break;
   }
@@ -282,10 +286,14 @@ void RunController::StepOnce() {
   if (s.step % publish_every_ == 0) pub_.PublishState();
   if (params_.steps > 0 && s.step >= params_.steps) {
     run_state_ = RunState::kFinished;
+    end_reason_ = "reached " + std::to_string(s.step) + " steps";
     ROS_INFO("ehd_capsule: reached %ld steps (t = %g); stopping", s.step, s.time);
   }
   if (steady_monitor_ && steady_monitor_->Update(s.time, s.dxy, s.inclination)) {
     run_state_ = RunState::kFinished;
+    char reason[96];
+    std::snprintf(reason, sizeof reason, "steady to %g at t = %g", params_.until_steady, s.time);
+    end_reason_ = reason;
     ROS_INFO("ehd_capsule: steady to %g at t = %g (D_xy = %.5f, theta/pi = %.4f); stopping",
              params_.until_steady, s.time, s.dxy, s.inclination / M_PI);
   }
@@ -307,7 +315,8 @@ int RunController::Run() {
   pub_.StartClocks();
   last_progress_ = run_start_ = ros::WallTime::now();
   ros::WallTime next_step_time = ros::WallTime::now();
-  while (ros::ok()) {
+  HandleShutdownInTheLoop();  // SIGINT, SIGTERM, rosnode kill: end below, between two steps
+  while (ros::ok() && !ShutdownRequested()) {
     ros::spinOnce();
     ApplyPendingRequests();
     PublishDiagnostics(false);
@@ -335,12 +344,20 @@ int RunController::Run() {
       }
     }
   }
+  std::string how = "ran";
+  if (run_state_ == RunState::kFailed) {
+    how = "stopped on an error";
+  } else if (run_state_ != RunState::kFinished) {
+    // Ended from outside: the final diagnostic says so (in the bag too).
+    run_state_ = RunState::kStopped;
+    end_reason_ = ShutdownRequested() ? ShutdownReason() : "ROS shut down";
+    how = "stopped (" + end_reason_ + ")";
+    ROS_INFO("ehd_capsule: %s at step %ld; stopping", end_reason_.c_str(), sim_.state().step);
+  }
   PublishDiagnostics(true);
   const double wall = (ros::WallTime::now() - run_start_).toSec();
   ROS_INFO("ehd_capsule: %s",
-           FormatSummary(run_state_ == RunState::kFailed ? "stopped on an error" : "ran",
-                         sim_.state(), sim_.units().time_unit, wall)
-               .c_str());
+           FormatSummary(how, sim_.state(), sim_.units().time_unit, wall).c_str());
   if (!pub_.field_is_current()) pub_.PublishField(true);  // the final state's layer
   if (recorder_) recorder_->Close();
   // Exit status: 1 if the simulation stopped on an error (even when the node was shut down

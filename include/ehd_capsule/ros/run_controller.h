@@ -37,14 +37,17 @@ std::string LargeRunWarning(const Scene& scene, const LatticeUnits& units);
 
 class RunController {
  public:
-  enum class RunState { kRunning, kPaused, kFailed, kFinished };
+  // kFinished: reached ~steps or ~until_steady; kStopped: ended from outside (SIGINT, SIGTERM,
+  // rosnode kill).
+  enum class RunState { kRunning, kPaused, kFailed, kFinished, kStopped };
 
   // Advertises the services and the dynamic_reconfigure server (its defaults: the scene's Ca_E
   // and Ca). recorder may be null; it and the others must outlive this.
   RunController(ros::NodeHandle& pnh, const NodeParameters& params, Simulation& sim,
                 NodePublishers& publishers, BagRecorder* recorder);
 
-  // Steps until ~steps (or ~until_steady) is reached or ROS shuts down; a simulation error stops
+  // Steps until ~steps (or ~until_steady) is reached, an end is requested (SIGINT, SIGTERM,
+  // rosnode kill: shutdown_request.h) or ROS shuts down; a simulation error stops
   // the stepping, and with ~exit_on_error ends the loop at once. Prints the summary, publishes
   // the final diagnostics and field, closes the bag. Returns the exit status: 1 when the
   // simulation stopped on an error or the recording failed, else 0.
@@ -76,7 +79,8 @@ class RunController {
 
   RunState run_state_ = RunState::kRunning;
   std::string failure_;
-  int publish_every_ = 1;  // ~publish_every, live via dynamic_reconfigure
+  std::string end_reason_;  // why it finished or stopped ("reached 60 steps", "SIGTERM")
+  int publish_every_ = 1;   // ~publish_every, live via dynamic_reconfigure
   std::unique_ptr<SteadyStateMonitor> steady_monitor_;
 
   // Requests recorded by callbacks, applied by the loop.
