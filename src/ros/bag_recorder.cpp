@@ -1,6 +1,9 @@
 #include "ehd_capsule/ros/bag_recorder.h"
 
 #include <ros/console.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -65,16 +68,42 @@ void BagRecorder::OpenNext() {
   Open();
 }
 
-void BagRecorder::Fail(const std::exception& e) {
-  // Disk full, file size limit, I/O error: stop recording (close what can be closed) and tell
-  // the node, which says why in an ERROR diagnostic and pauses or stops the simulation.
-  failure_ = std::string("writing the bag ") + active_path() + " failed: " + e.what();
-  failed_bag_ = std::move(bag_);
-  try {
-    failed_bag_->close();
-  } catch (const std::exception& close_error) {
-    ROS_ERROR("ehd_capsule: closing the bag failed too: %s", close_error.what());
+std::string OsReason(int error, const std::string& path) {
+  std::string reason;
+  if (error != 0) reason = std::strerror(error);
+  struct rlimit limit {};
+  struct stat st {};
+  const bool size_known = ::stat(path.c_str(), &st) == 0;
+  if (error == EFBIG ||
+      (error == 0 && size_known && getrlimit(RLIMIT_FSIZE, &limit) == 0 &&
+       limit.rlim_cur != RLIM_INFINITY && static_cast<rlim_t>(st.st_size) >= limit.rlim_cur)) {
+    if (reason.empty()) reason = std::strerror(EFBIG);
+    if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+      reason += " (the file size limit, ulimit -f: " +
+                std::to_string(static_cast<unsigned long long>(limit.rlim_cur)) + " bytes)";
+    }
+    return reason;
   }
+  struct statvfs fs {};
+  const std::string dir = path.substr(0, path.find_last_of('/') + 1);
+  if (statvfs(dir.empty() ? "." : dir.c_str(), &fs) == 0 && fs.f_bavail == 0) {
+    if (error == 0 || error == ENOSPC) reason = std::strerror(ENOSPC);
+    reason += " (" + std::to_string(static_cast<unsigned long long>(fs.f_blocks) * fs.f_frsize) +
+              "-byte filesystem full)";
+  }
+  return reason;
+}
+
+void BagRecorder::Fail(const std::exception& e, int error) {
+  // Disk full, file size limit, I/O error: stop recording and tell the node, which says why in
+  // an ERROR diagnostic and pauses or stops the simulation. rosbag cannot close a bag whose
+  // index it cannot write (close() throws, and so would the destructor, at exit: status 134), so
+  // the failed bag is left as it is, .active, to `rosbag reindex`, and its handle to the end of
+  // the process.
+  const std::string reason = OsReason(error, active_path());
+  failure_ = std::string("writing the bag ") + active_path() +
+             " failed: " + (reason.empty() ? "" : reason + "; rosbag: ") + e.what();
+  abandoned_.push_back(bag_.release());
   if (on_error_) on_error_(failure_);
 }
 

@@ -124,10 +124,6 @@ NodeParameters ReadNodeParameters(ros::NodeHandle& pnh, const ros::NodeHandle& n
   pnh.param("record", p.record, false);
   pnh.param<std::string>("bag", p.bag, "ehd_capsule.bag");
   pnh.param("overwrite", p.overwrite, false);
-  pnh.param<std::string>("on_record_error", p.on_record_error, "pause");
-  // A batch run (~steps > 0) ends on a simulation error with exit status 1; a live run (steps 0)
-  // stays up for inspection (~reset starts over) unless ~exit_on_error is true.
-  pnh.param("exit_on_error", p.exit_on_error, p.steps > 0);
   pnh.param("advance_steps", p.advance_steps, 1);
   pnh.param("progress_period", p.progress_period, 5.0);
   // ~until_steady TOL > 0: stop (like reaching ~steps) once D_xy and theta are steady to TOL
@@ -139,6 +135,12 @@ NodeParameters ReadNodeParameters(ros::NodeHandle& pnh, const ros::NodeHandle& n
   // ~state_throttled: the latest state at most this often in wall time (plots, UIs: ~state runs
   // at thousands of messages per second of sim time, which rqt_plot and rospy cannot follow).
   pnh.param("throttled_rate", p.throttled_rate, 20.0);
+  // A batch run (~steps or ~until_steady) ends on a simulation error with exit status 1; a live
+  // run stays up for inspection (~reset starts over) unless ~exit_on_error is true.
+  pnh.param("exit_on_error", p.exit_on_error, p.batch());
+  // A failed bag write stops a batch run (~steps, ~until_steady: it must not wait paused for an
+  // operator who is not there) and pauses a live one.
+  pnh.param<std::string>("on_record_error", p.on_record_error, p.batch() ? "stop" : "pause");
   nh.param("/use_sim_time", p.use_sim_time, false);
   ValidateNodeParameters(p);
 

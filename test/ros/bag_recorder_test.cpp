@@ -6,9 +6,12 @@
 #include <gtest/gtest.h>
 #include <rosbag/view.h>
 #include <std_msgs/String.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -138,6 +141,48 @@ TEST_F(BagRecorderTest, LatchedConnection) {
   ASSERT_TRUE(c->header);
   EXPECT_EQ(c->header->at("latching"), "1");
   EXPECT_EQ(c->header->at("callerid"), "/ehd_test");
+}
+
+// A write over the file size limit (ulimit -f, as a full disk): the recording stops with the OS's
+// reason, the error callback runs once, later writes are refused, and neither closing nor
+// destroying the recorder throws (rosbag's close of such a bag does: status 134 at exit).
+TEST_F(BagRecorderTest, WriteFailureStopsTheRecordingWithTheOsReason) {
+  const std::string path = Path("limited.bag");
+  std::signal(SIGXFSZ, SIG_IGN);  // as the node: the write fails instead of killing the process
+  struct rlimit saved {};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);
+  std::vector<std::string> errors;
+  {
+    BagRecorder rec = Make(path);
+    rec.set_on_error([&errors](const std::string& why) { errors.push_back(why); });
+    rec.Open();
+    struct rlimit limit = saved;
+    limit.rlim_cur = 64 * 1024;
+    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &limit), 0);
+    const std_msgs::String big = Text(std::string(4096, 'x'));
+    int written = 0;
+    while (written < 1000 && rec.Write("state", big, ros::Time(1.0 + written))) ++written;
+    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &saved), 0);
+    EXPECT_LT(written, 1000) << "the file size limit was never hit";
+    EXPECT_FALSE(rec.is_open());
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_EQ(errors[0], rec.failure());
+    EXPECT_NE(rec.failure().find("writing the bag " + path + ".active failed"), std::string::npos)
+        << rec.failure();
+    EXPECT_NE(rec.failure().find(std::strerror(EFBIG)), std::string::npos) << rec.failure();
+    EXPECT_NE(rec.failure().find("ulimit -f"), std::string::npos) << rec.failure();
+    EXPECT_FALSE(rec.Write("state", big, ros::Time(2000.0)));
+    EXPECT_EQ(errors.size(), 1u);
+    EXPECT_NO_THROW(rec.Close());
+  }  // destroyed without an exception
+  EXPECT_TRUE(fs::exists(path + ".active")) << "the failed bag keeps its .active name";
+  EXPECT_FALSE(fs::exists(path));
+}
+
+TEST(OsReason, NamesTheLimitOrTheFullDisk) {
+  EXPECT_NE(OsReason(EFBIG, "/nonexistent/x.bag").find(std::strerror(EFBIG)), std::string::npos);
+  EXPECT_EQ(OsReason(ENOSPC, "/tmp/x.bag").find(std::strerror(ENOSPC)), 0u);
+  EXPECT_EQ(OsReason(0, "/tmp/no_such_file.bag"), "");  // nothing known
 }
 
 }  // namespace

@@ -12,12 +12,20 @@
 #include <rosbag/bag.h>
 
 #include <boost/make_shared.hpp>
+#include <cerrno>
 #include <exception>
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace ehd::ros_node {
+
+// The OS's reason for a failed write of the file at path: strerror(error), with what it means
+// for a bag (the file size limit of ulimit -f, a full filesystem). error may be 0 (the C
+// library's buffer failed earlier): then it is found from the limit and the free space; empty
+// when nothing is known.
+std::string OsReason(int error, const std::string& path);
 
 class BagRecorder {
  public:
@@ -47,7 +55,8 @@ class BagRecorder {
   long states() const { return states_; }
   void CountState() { ++states_; }
 
-  // Why the recording stopped (empty: it did not); cleared by Open / OpenNext.
+  // Why the recording stopped (empty: it did not), with the OS's reason ("File too large (the
+  // file size limit, ...)", "No space left on device"); cleared by Open / OpenNext.
   const std::string& failure() const { return failure_; }
   // Called once per failure, after the recording stopped, with failure().
   void set_on_error(std::function<void(const std::string&)> on_error) {
@@ -63,7 +72,7 @@ class BagRecorder {
   bool WriteLatched(const std::string& topic, const M& msg, const ros::Time& stamp);
 
  private:
-  void Fail(const std::exception& e);
+  void Fail(const std::exception& e, int error);  // error: errno right after the failure
   std::string Resolve(const std::string& topic) const {
     return topic.empty() || topic.front() == '/' ? topic : resolve_name_(topic);
   }
@@ -76,7 +85,7 @@ class BagRecorder {
   std::function<std::string(const std::string&)> resolve_name_;
   std::function<void(const std::string&)> on_error_;
   std::unique_ptr<rosbag::Bag> bag_;
-  std::unique_ptr<rosbag::Bag> failed_bag_;  // a bag whose write failed, kept to the end
+  std::vector<rosbag::Bag*> abandoned_;  // bags whose write failed: never closed (see Fail)
   int serial_ = 0;
   long states_ = 0;
   std::string failure_;
@@ -85,10 +94,11 @@ class BagRecorder {
 template <typename M>
 bool BagRecorder::Write(const std::string& topic, const M& msg, const ros::Time& stamp) {
   if (!bag_) return false;
+  errno = 0;
   try {
     bag_->write(Resolve(topic), NonZero(stamp), msg);
   } catch (const std::exception& e) {
-    Fail(e);
+    Fail(e, errno);
     return false;
   }
   return true;
@@ -105,10 +115,11 @@ bool BagRecorder::WriteLatched(const std::string& topic, const M& msg, const ros
   (*header)["md5sum"] = ros::message_traits::MD5Sum<M>::value();
   (*header)["type"] = ros::message_traits::DataType<M>::value();
   (*header)["message_definition"] = ros::message_traits::Definition<M>::value();
+  errno = 0;
   try {
     bag_->write(name, NonZero(stamp), msg, header);
   } catch (const std::exception& e) {
-    Fail(e);
+    Fail(e, errno);
     return false;
   }
   return true;

@@ -47,8 +47,10 @@ struct NodeParameters {
   bool record = false;
   std::string bag = "ehd_capsule.bag";
   bool overwrite = false;
-  std::string on_record_error = "pause";  // or "stop"
-  bool exit_on_error = false;             // default: ~steps > 0
+  // ~on_record_error: "pause" or "stop"; default (ReadNodeParameters): stop for a batch run
+  // (~steps or ~until_steady), pause for a live one.
+  std::string on_record_error = "pause";
+  bool exit_on_error = false;  // default: ~steps > 0
   int advance_steps = 1;
   bool publish_clock = true;  // this node owns /clock (with /use_sim_time)
   bool use_sim_time = false;  // /use_sim_time (global)
