@@ -8,7 +8,8 @@ arguments and parameters exactly as a launch would):
     scene of its own name (config/scenes/<name>.yaml), and every shipped scene has one;
   - the node gets the scene of the file, or the one given by scene:= instead, and the arguments
     given on the command line (steps:=) pass through the include;
-  - the 3D scenes' files pass the 3D rviz configuration.
+  - the 3D scenes' files pass the 3D rviz configuration;
+  - on_record_error is an argument (stop by default with steps or until_steady, else pause).
 Exit status 0 when every check passes."""
 import os
 import subprocess
@@ -82,6 +83,25 @@ def main():
               f"{f}: {'the 3D' if three_d else 'the 2D'} rviz configuration")
     params = dump_params(os.path.join(LAUNCH, "shear_field.launch"))
     check(params.get("/ehd_capsule/scene") == "shear_field", "shear_field.launch runs shear_field")
+    # on_record_error: a launch argument; stop for a batch run (steps, until_steady), else pause.
+    main_launch = os.path.join(LAUNCH, "shear_field.launch")
+    for args, expect in (((), "pause"), (("steps:=7",), "stop"), (("until_steady:=1e-3",), "stop"),
+                         (("steps:=7", "on_record_error:=pause"), "pause"),
+                         (("on_record_error:=stop",), "stop")):
+        params = dump_params(main_launch, *args)
+        got = params.get("/ehd_capsule/on_record_error")
+        check(got == expect, f"shear_field.launch {' '.join(args)}: on_record_error {got}, "
+                             f"expected {expect}")
+        # exit_on_error: true with steps or until_steady only (roslaunch's eval sees the
+        # arguments as numbers: comparing them with '0' made it true always).
+        if "on_record_error:=pause" not in args and "on_record_error:=stop" not in args:
+            batch = "true" if args else "false"
+            got = params.get("/ehd_capsule/exit_on_error")
+            check(got == batch, f"shear_field.launch {' '.join(args)}: exit_on_error {got}, "
+                                f"expected {batch}")
+    got = dump_params(os.path.join(LAUNCH, "electric_drop.launch"), "on_record_error:=stop")
+    check(got.get("/ehd_capsule/on_record_error") == "stop",
+          "on_record_error passes through a scene's launch file")
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1

@@ -1,0 +1,128 @@
+// The node's bag (rosbag C++ API, no ROS master needed: tested alone in
+// test/ros_unit/bag_recorder_test.cpp).
+//
+// Written as <bag>.active and renamed to <bag> when closed, as `rosbag record` does: a bag left
+// by a killed process (kill -9, power loss) keeps the .active name and is repaired with
+// `rosbag reindex`. An existing bag is not overwritten unless asked to. A reset starts a new
+// timeline in a numbered bag (<stem>.1.bag, .2.bag, ...). A write that fails (disk full, file
+// size limit, I/O error) stops the recording: failure() says why, and the error callback runs.
+#pragma once
+
+#include <ros/message_traits.h>
+#include <rosbag/bag.h>
+
+#include <boost/make_shared.hpp>
+#include <cerrno>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ehd::ros_node {
+
+// The OS's reason for a failed write of the file at path: strerror(error), with what it means
+// for a bag (the file size limit of ulimit -f, a full filesystem). error may be 0 (the C
+// library's buffer failed earlier): then it is found from the limit and the free space; empty
+// when nothing is known.
+std::string OsReason(int error, const std::string& path);
+
+class BagRecorder {
+ public:
+  // resolve_name: the name a relative topic is recorded under (the node's resolved private
+  // names, so a replay republishes them there); caller_id: the connection headers' callerid.
+  BagRecorder(std::string bag_path, bool overwrite, std::string caller_id,
+              std::function<std::string(const std::string&)> resolve_name);
+  ~BagRecorder();  // Close(); never throws
+  BagRecorder(const BagRecorder&) = delete;
+  BagRecorder& operator=(const BagRecorder&) = delete;
+
+  // Opens path() as active_path(). Throws std::invalid_argument when the bag (or its .active)
+  // exists and overwrite is false, rosbag::BagException when it cannot be opened.
+  void Open();
+  // Closes the bag and renames it to path(); logs the path and the states in it. A no-op when
+  // no bag is open.
+  void Close();
+  // For a reset: closes the bag and opens the next one of the series, <stem>.<n>.bag with n
+  // one more than the last (the stem is the bag as given, less ".bag"). Throws as Open().
+  void OpenNext();
+
+  bool is_open() const { return bag_ != nullptr; }
+  const std::string& path() const { return path_; }  // the bag being (or last) recorded
+  std::string active_path() const { return path_ + ".active"; }
+  int serial() const { return serial_; }  // 0 for the bag as given, n for <stem>.<n>.bag
+  // The states (CapsuleState) written into the bag now open (or last closed).
+  long states() const { return states_; }
+  void CountState() { ++states_; }
+
+  // Why the recording stopped (empty: it did not), with the OS's reason ("File too large (the
+  // file size limit, ...)", "No space left on device"); cleared by Open / OpenNext.
+  const std::string& failure() const { return failure_; }
+  // Called once per failure, after the recording stopped, with failure().
+  void set_on_error(std::function<void(const std::string&)> on_error) {
+    on_error_ = std::move(on_error);
+  }
+
+  // Writes msg under topic (relative topics resolved) at stamp (a zero stamp, which rosbag
+  // refuses, as 1 ns). Returns false when no bag is open or the write failed.
+  template <typename M>
+  bool Write(const std::string& topic, const M& msg, const ros::Time& stamp);
+  // The same as a latched connection (`rosbag play` latches it again).
+  template <typename M>
+  bool WriteLatched(const std::string& topic, const M& msg, const ros::Time& stamp);
+
+ private:
+  void Fail(const std::exception& e, int error);  // error: errno right after the failure
+  std::string Resolve(const std::string& topic) const {
+    return topic.empty() || topic.front() == '/' ? topic : resolve_name_(topic);
+  }
+  static ros::Time NonZero(const ros::Time& t) { return t.isZero() ? ros::Time(1e-9) : t; }
+
+  std::string base_path_;  // the bag as given
+  std::string path_;
+  bool overwrite_;
+  std::string caller_id_;
+  std::function<std::string(const std::string&)> resolve_name_;
+  std::function<void(const std::string&)> on_error_;
+  std::unique_ptr<rosbag::Bag> bag_;
+  std::vector<rosbag::Bag*> abandoned_;  // bags whose write failed: never closed (see Fail)
+  int serial_ = 0;
+  long states_ = 0;
+  std::string failure_;
+};
+
+template <typename M>
+bool BagRecorder::Write(const std::string& topic, const M& msg, const ros::Time& stamp) {
+  if (!bag_) return false;
+  errno = 0;
+  try {
+    bag_->write(Resolve(topic), NonZero(stamp), msg);
+  } catch (const std::exception& e) {
+    Fail(e, errno);
+    return false;
+  }
+  return true;
+}
+
+template <typename M>
+bool BagRecorder::WriteLatched(const std::string& topic, const M& msg, const ros::Time& stamp) {
+  if (!bag_) return false;
+  const std::string name = Resolve(topic);
+  auto header = boost::make_shared<ros::M_string>();
+  (*header)["callerid"] = caller_id_;
+  (*header)["latching"] = "1";
+  (*header)["topic"] = name;
+  (*header)["md5sum"] = ros::message_traits::MD5Sum<M>::value();
+  (*header)["type"] = ros::message_traits::DataType<M>::value();
+  (*header)["message_definition"] = ros::message_traits::Definition<M>::value();
+  errno = 0;
+  try {
+    bag_->write(name, NonZero(stamp), msg, header);
+  } catch (const std::exception& e) {
+    Fail(e, errno);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace ehd::ros_node

@@ -1,0 +1,80 @@
+// The node's private parameters (~scene, ~steps, ~record, ...) as a plain struct: read from the
+// parameter server by ReadNodeParameters, checked by ValidateNodeParameters (no ROS master
+// needed, so it is tested alone: test/ros_unit/node_parameters_test.cpp).
+#pragma once
+
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include <string>
+#include <vector>
+
+#include "ehd_capsule/ros/state_messages.h"
+
+namespace ros {
+class NodeHandle;
+}
+
+namespace ehd::ros_node {
+
+// What the node does when writing the bag fails (disk full, file size limit, I/O error).
+enum class RecordErrorAction {
+  kPause,  // stop recording, pause the simulation (~resume continues unrecorded)
+  kStop,   // stop recording and the simulation, as on a simulation error (~exit_on_error)
+};
+
+struct NodeParameters {
+  std::string scene = "shear_field";
+  std::vector<std::string> overrides;  // "key=value", from ~set, ~start_Ca_E, ~start_Ca
+  long steps = 0;                      // 0: run until shutdown
+  double until_steady = 0.0;           // tolerance, 0: off
+  int publish_every = 1;
+  // The marker array with every n-th published state; 0: 1 in 2D, 10 in 3D (the surface's
+  // triangle list is most of a 3D bag).
+  int markers_every = 0;
+  std::string frame_id = "ehd";
+  std::string world_frame = "world";  // parent of frame_id in /tf_static
+  double force_arrow_scale = 1.0;
+  bool velocity_arrows = false;
+  int velocity_stride = 8;
+  std::string surface_colour = "traction";  // ParseSurfaceColour
+  std::string field_layer = "speed";        // ParseFieldLayer (needs the simulation)
+  int field_stride = 0;                     // cells per square, 0: N / 64 (at least 1)
+  double field_rate = 2.0;                  // Hz of wall time
+  double field_interval = 0.1;              // at least this often in simulation time
+  double max_step_rate = 0.0;               // steps per wall second, 0: as fast as possible
+  double progress_period = 5.0;             // wall seconds between progress lines, 0: none
+  double throttled_rate = 20.0;             // ~state_throttled, Hz of wall time
+  bool record = false;
+  std::string bag = "ehd_capsule.bag";
+  bool overwrite = false;
+  // ~on_record_error: "pause" or "stop"; default (ReadNodeParameters): stop for a batch run
+  // (~steps or ~until_steady), pause for a live one.
+  std::string on_record_error = "pause";
+  bool exit_on_error = false;  // default: ~steps > 0
+  int advance_steps = 1;
+  bool publish_clock = true;  // this node owns /clock (with /use_sim_time)
+  bool use_sim_time = false;  // /use_sim_time (global)
+
+  bool batch() const { return steps > 0 || until_steady > 0.0; }
+  RecordErrorAction record_error_action() const;
+};
+
+// Throws std::invalid_argument naming the parameter, the value and what is accepted; checks in
+// the order the parameters are documented (the first problem is the one reported).
+void ValidateNodeParameters(const NodeParameters& p);
+
+// ~set (a dictionary of scene keys, e.g. {Ca: 0.1, N: 64}; a nested dictionary names a
+// section's keys: {geometry: {half_width: 3}} is geometry.half_width=3) as "key=value"
+// overrides; doubles as the shortest text that reads back the same. Throws
+// std::invalid_argument for anything but a dictionary of numbers, booleans, strings and
+// dictionaries.
+std::vector<std::string> SceneOverrides(XmlRpc::XmlRpcValue& set);
+// ~start_Ca_E / ~start_Ca (the launch arguments Ca_E and Ca; < 0: the scene's value) as
+// overrides appended after ~set's.
+std::vector<std::string> StartValueOverrides(double start_ca_e, double start_ca);
+
+// Reads every private parameter (and /use_sim_time), validates them and writes the effective
+// scene, publish_every and frame_id back (so `rosparam get` shows what runs).
+NodeParameters ReadNodeParameters(ros::NodeHandle& private_nh, const ros::NodeHandle& nh);
+
+}  // namespace ehd::ros_node

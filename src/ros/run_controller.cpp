@@ -1,0 +1,370 @@
+#include "ehd_capsule/ros/run_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "ehd_capsule/ros/shutdown_request.h"
+
+namespace ehd::ros_node {
+
+std::string FormatProgressLine(const SimulationState& s, const std::string& time_unit,
+                               double steps_per_second) {
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "step %ld  t = %.4g %s  D_xy = %.5f  theta/pi = %.4f  area drift = %.2e  %.0f "
+                "steps/s",
+                s.step, s.time, time_unit.c_str(), s.dxy, s.inclination / M_PI, s.area_drift,
+                steps_per_second);
+  return line;
+}
+
+std::string FormatSummary(const std::string& how, const SimulationState& s,
+                          const std::string& time_unit, double wall_seconds) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "summary: %s after %ld steps, t = %.4g %s: D_xy = %.5f, theta/pi = %.4f, area "
+                "drift = %.2e; %.1f s wall (%.0f steps/s)",
+                how.c_str(), s.step, s.time, time_unit.c_str(), s.dxy, s.inclination / M_PI,
+                s.area_drift, wall_seconds, wall_seconds > 0 ? s.step / wall_seconds : 0.0);
+  return line;
+}
+
+std::string LargeRunWarning(const Scene& scene, const LatticeUnits& units) {
+  // Estimates from this machine kind's measured costs (docs/validation_ehd.md sec. 5,
+  // docs/lbm.md): ~250 bytes of fluid state per cell (populations, moments, force, viscosity,
+  // potential), and ~18 ns per cell and step for the whole coupled step on one core.
+  const double cells = static_cast<double>(scene.N) * scene.N;
+  const double bytes = 250.0 * cells;
+  const double seconds_per_step = 18e-9 * cells;
+  const double steps_per_unit = units.steps_per_time_unit;
+  const double seconds_per_unit = seconds_per_step * steps_per_unit;
+  if (!(bytes > 1e9 || seconds_per_unit > 600.0)) return "";
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "large run: N = %d needs about %.2g GB and %.2g s per step; one time unit (%s) is "
+                "%.3g steps, about %.3g h of wall time. Lower N (set:=\"{N: ...}\") for a live "
+                "view.",
+                scene.N, bytes / 1e9, seconds_per_step, units.time_unit.c_str(), steps_per_unit,
+                seconds_per_unit / 3600.0);
+  return text;
+}
+
+RunController::RunController(ros::NodeHandle& pnh, const NodeParameters& params, Simulation& sim,
+                             NodePublishers& publishers, BagRecorder* recorder)
+    : params_(params),
+      sim_(sim),
+      pub_(publishers),
+      recorder_(recorder),
+      publish_every_(params.publish_every),
+      advance_steps_(params.advance_steps) {
+  if (params.until_steady > 0.0) {
+    steady_monitor_ = std::make_unique<SteadyStateMonitor>(params.until_steady);
+  }
+  if (recorder_) {
+    recorder_->set_on_error([this](const std::string& reason) { OnRecordError(reason); });
+  }
+  pause_srv_ = pnh.advertiseService("pause", &RunController::OnPause, this);
+  resume_srv_ = pnh.advertiseService("resume", &RunController::OnResume, this);
+  reset_srv_ = pnh.advertiseService("reset", &RunController::OnReset, this);
+  advance_srv_ = pnh.advertiseService("advance", &RunController::OnAdvance, this);
+  advance_by_srv_ = pnh.advertiseService("advance_by", &RunController::OnAdvanceBy, this);
+
+  // The dynamic_reconfigure defaults are the scene's values, not the .cfg's.
+  config_.Ca_E = sim_.state().ca_e;
+  config_.Ca = sim_.state().ca;
+  config_.publish_every = publish_every_;
+  config_.paused = false;
+  config_.advance_steps = advance_steps_;
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<ehd_capsule::SimulationConfig>>(
+      reconfigure_mutex_, pnh);
+  reconfigure_->updateConfig(config_);
+  reconfigure_->setCallback(
+      [this](ehd_capsule::SimulationConfig& c, uint32_t level) { OnReconfigure(c, level); });
+}
+
+void RunController::OnReconfigure(ehd_capsule::SimulationConfig& config, uint32_t /*level*/) {
+  // Ca_E and Ca go to the simulation's queue (applied at the next step, or refused now); the
+  // shown configuration keeps the applied values.
+  const long next_step = sim_.state().step + 1;
+  if (config.Ca_E != config_.Ca_E) {
+    try {
+      sim_.SetCaE(config.Ca_E);
+      config_.Ca_E = config.Ca_E;
+      ROS_INFO("ehd_capsule: Ca_E = %g from step %ld", config.Ca_E, next_step);
+    } catch (const std::exception& e) {
+      ROS_ERROR("ehd_capsule: refused Ca_E = %g: %s (Ca_E stays %g)", config.Ca_E, e.what(),
+                config_.Ca_E);
+    }
+    config_dirty_ = true;
+  }
+  if (config.Ca != config_.Ca) {
+    try {
+      sim_.SetCa(config.Ca);
+      config_.Ca = config.Ca;
+      ROS_INFO("ehd_capsule: Ca = %g from step %ld", config.Ca, next_step);
+    } catch (const std::exception& e) {
+      ROS_ERROR("ehd_capsule: refused Ca = %g: %s (Ca stays %g)", config.Ca, e.what(), config_.Ca);
+    }
+    config_dirty_ = true;
+  }
+  if (config.publish_every != config_.publish_every) {
+    publish_every_ = config.publish_every;
+    ROS_INFO("ehd_capsule: publish_every = %d from step %ld", publish_every_, sim_.state().step);
+  }
+  if (config.paused != config_.paused && run_state_ != RunState::kFailed &&
+      run_state_ != RunState::kFinished) {
+    run_state_ = config.paused ? RunState::kPaused : RunState::kRunning;
+    ROS_INFO("ehd_capsule: %s at step %ld", config.paused ? "paused" : "resumed",
+             sim_.state().step);
+  }
+  advance_steps_ = config.advance_steps;
+  const double ca_e = config_.Ca_E, ca = config_.Ca;
+  config_ = config;
+  config_.Ca_E = ca_e;
+  config_.Ca = ca;
+}
+
+bool RunController::OnPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  if (run_state_ == RunState::kFailed || run_state_ == RunState::kFinished) {
+    res.success = false;
+    res.message = "simulation is not running: " + (failure_.empty() ? "finished" : failure_);
+    return true;
+  }
+  run_state_ = RunState::kPaused;
+  config_.paused = true;
+  config_dirty_ = true;
+  res.success = true;
+  res.message = "paused at step " + std::to_string(sim_.state().step);
+  ROS_INFO("ehd_capsule: %s", res.message.c_str());
+  return true;
+}
+
+bool RunController::OnResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  if (run_state_ != RunState::kPaused) {
+    res.success = false;
+    res.message =
+        run_state_ == RunState::kRunning ? "already running" : "cannot resume: " + failure_;
+    return true;
+  }
+  run_state_ = RunState::kRunning;
+  config_.paused = false;
+  config_dirty_ = true;
+  res.success = true;
+  res.message = "resumed at step " + std::to_string(sim_.state().step);
+  ROS_INFO("ehd_capsule: %s", res.message.c_str());
+  return true;
+}
+
+bool RunController::OnReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  pending_reset_ = true;
+  res.success = true;
+  res.message = "reset queued; applied before the next step";
+  return true;
+}
+
+bool RunController::StartAdvance(long steps, std::string& message) {
+  if (run_state_ != RunState::kPaused) {
+    message = "advance works while paused (call ~pause first)";
+    return false;
+  }
+  advance_remaining_ += steps;
+  message = "advancing " + std::to_string(steps) + " steps from step " +
+            std::to_string(sim_.state().step);
+  return true;
+}
+
+bool RunController::OnAdvance(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  res.success = StartAdvance(advance_steps_, res.message);
+  return true;
+}
+
+bool RunController::OnAdvanceBy(ehd_capsule::Advance::Request& req,
+                                ehd_capsule::Advance::Response& res) {
+  if (req.steps < 1) {
+    res.success = false;
+    res.message = "steps must be >= 1 (got " + std::to_string(req.steps) + ")";
+    return true;
+  }
+  res.success = StartAdvance(req.steps, res.message);
+  return true;
+}
+
+void RunController::ResetRun() {
+  sim_.Reset();
+  advance_remaining_ = 0;
+  pub_.RestartMarkers();
+  if (run_state_ == RunState::kFailed || run_state_ == RunState::kFinished) {
+    run_state_ = config_.paused ? RunState::kPaused : RunState::kRunning;
+    failure_.clear();
+  }
+  config_.Ca_E = sim_.state().ca_e;
+  config_.Ca = sim_.state().ca;
+  config_dirty_ = true;
+  ROS_INFO("ehd_capsule: reset to the initial state of scene '%s'", params_.scene.c_str());
+  if (recorder_) {
+    // A new timeline starts at t = 0: a new bag, numbered (<stem>.1.bag, .2.bag, ...), so no
+    // bag holds two timelines; recording resumes after a failure too.
+    try {
+      recorder_->OpenNext();
+      pub_.RecordBagHeader();
+    } catch (const std::exception& e) {
+      ROS_ERROR("ehd_capsule: cannot record after the reset: %s", e.what());
+    }
+  }
+  pub_.PublishSurfaceMesh();
+}
+
+void RunController::ApplyPendingRequests() {
+  if (pending_reset_) {
+    pending_reset_ = false;
+    ResetRun();
+  }
+  if (config_dirty_) {
+    config_dirty_ = false;
+    config_.publish_every = publish_every_;
+    reconfigure_->updateConfig(config_);
+  }
+}
+
+RunStatus RunController::Status() const {
+  switch (run_state_) {
+    case RunState::kRunning:
+      return {false, "running"};
+    case RunState::kPaused:
+      return {false, "paused"};
+    case RunState::kFinished:
+      return {false, end_reason_.empty() ? "finished" : "finished: " + end_reason_};
+    case RunState::kStopped:
+      return {false, "stopped: " + end_reason_};
+    case RunState::kFailed:
+      break;
+  }
+  return {true, failure_};
+}
+
+void RunController::PublishDiagnostics(bool force) { pub_.PublishDiagnostics(force, Status()); }
+
+void RunController::Fail(const std::string& reason) {
+  run_state_ = RunState::kFailed;
+  failure_ = reason;
+  ROS_ERROR("ehd_capsule: simulation stopped at step %ld: %s", sim_.state().step, reason.c_str());
+  if (params_.exit_on_error) {
+    ROS_ERROR("ehd_capsule: exiting with status 1 (~exit_on_error)");
+  } else {
+    ROS_ERROR("ehd_capsule: the node stays up for inspection; call ~reset to start over");
+  }
+  PublishDiagnostics(true);
+  pub_.PublishField(true);  // the layer of the state the run stopped at
+  if (recorder_) recorder_->Close();
+}
+
+void RunController::OnRecordError(const std::string& reason) {
+  ROS_ERROR("ehd_capsule: %s; recording stopped at step %ld", reason.c_str(), sim_.state().step);
+  if (params_.record_error_action() == RecordErrorAction::kStop) {
+    Fail(reason);
+  } else if (run_state_ == RunState::kRunning) {
+    run_state_ = RunState::kPaused;
+    config_.paused = true;
+    config_dirty_ = true;
+    ROS_ERROR(
+        "ehd_capsule: simulation paused (~on_record_error: pause); ~resume continues "
+        "without recording");
+  }
+  PublishDiagnostics(true);
+}
+
+void RunController::StepOnce() {
+  try {
+    sim_.Step();
+  } catch (const std::exception& e) {
+    Fail(e.what());
+    return;
+  }
+  pub_.CountStep();
+  const SimulationState& s = sim_.state();
+  if (s.step % publish_every_ == 0) pub_.PublishState();
+  if (params_.steps > 0 && s.step >= params_.steps) {
+    run_state_ = RunState::kFinished;
+    end_reason_ = "reached " + std::to_string(s.step) + " steps";
+    ROS_INFO("ehd_capsule: reached %ld steps (t = %g); stopping", s.step, s.time);
+  }
+  if (steady_monitor_ && steady_monitor_->Update(s.time, s.dxy, s.inclination)) {
+    run_state_ = RunState::kFinished;
+    char reason[96];
+    std::snprintf(reason, sizeof reason, "steady to %g at t = %g", params_.until_steady, s.time);
+    end_reason_ = reason;
+    ROS_INFO("ehd_capsule: steady to %g at t = %g (D_xy = %.5f, theta/pi = %.4f); stopping",
+             params_.until_steady, s.time, s.dxy, s.inclination / M_PI);
+  }
+}
+
+void RunController::PrintProgress(bool force) {
+  if (params_.progress_period <= 0.0 && !force) return;
+  const ros::WallTime now = ros::WallTime::now();
+  if (!force && (now - last_progress_).toSec() < params_.progress_period) return;
+  const SimulationState& s = sim_.state();
+  const double wall = (now - last_progress_).toSec();
+  const double rate = wall > 0.0 ? (s.step - last_progress_step_) / wall : 0.0;
+  ROS_INFO("ehd_capsule: %s", FormatProgressLine(s, sim_.units().time_unit, rate).c_str());
+  last_progress_ = now;
+  last_progress_step_ = s.step;
+}
+
+int RunController::Run() {
+  pub_.StartClocks();
+  last_progress_ = run_start_ = ros::WallTime::now();
+  ros::WallTime next_step_time = ros::WallTime::now();
+  HandleShutdownInTheLoop();  // SIGINT, SIGTERM, rosnode kill: end below, between two steps
+  while (ros::ok() && !ShutdownRequested()) {
+    ros::spinOnce();
+    ApplyPendingRequests();
+    PublishDiagnostics(false);
+    if (run_state_ == RunState::kRunning) PrintProgress(false);
+    pub_.PublishThrottled();
+    pub_.PublishField(false);
+    if (run_state_ == RunState::kFinished) break;
+    if (run_state_ == RunState::kFailed && params_.exit_on_error) break;
+    const bool may_step = run_state_ == RunState::kRunning ||
+                          (run_state_ == RunState::kPaused && advance_remaining_ > 0);
+    if (!may_step) {
+      ros::WallDuration(0.01).sleep();
+      continue;
+    }
+    if (params_.max_step_rate > 0.0) {
+      const ros::WallTime now = ros::WallTime::now();
+      if (now < next_step_time) (next_step_time - now).sleep();
+      next_step_time =
+          std::max(now, next_step_time) + ros::WallDuration(1.0 / params_.max_step_rate);
+    }
+    StepOnce();
+    if (run_state_ == RunState::kPaused && advance_remaining_ > 0) {
+      if (--advance_remaining_ == 0) {
+        ROS_INFO("ehd_capsule: advanced to step %ld (paused)", sim_.state().step);
+      }
+    }
+  }
+  std::string how = "ran";
+  if (run_state_ == RunState::kFailed) {
+    how = "stopped on an error";
+  } else if (run_state_ != RunState::kFinished) {
+    // Ended from outside: the final diagnostic says so (in the bag too).
+    run_state_ = RunState::kStopped;
+    end_reason_ = ShutdownRequested() ? ShutdownReason() : "ROS shut down";
+    how = "stopped (" + end_reason_ + ")";
+    ROS_INFO("ehd_capsule: %s at step %ld; stopping", end_reason_.c_str(), sim_.state().step);
+  }
+  PublishDiagnostics(true);
+  const double wall = (ros::WallTime::now() - run_start_).toSec();
+  ROS_INFO("ehd_capsule: %s",
+           FormatSummary(how, sim_.state(), sim_.units().time_unit, wall).c_str());
+  if (!pub_.field_is_current()) pub_.PublishField(true);  // the final state's layer
+  if (recorder_) recorder_->Close();
+  // Exit status: 1 if the simulation stopped on an error (even when the node was shut down
+  // afterwards) or the recording failed, 0 otherwise; main() returns 1 for an invalid scene or
+  // parameter.
+  const bool record_failed = recorder_ && !recorder_->failure().empty();
+  return run_state_ == RunState::kFailed || record_failed ? 1 : 0;
+}
+
+}  // namespace ehd::ros_node

@@ -1,0 +1,189 @@
+// The node's bag recorder without a ROS master (the rosbag C++ API needs none): .active while
+// open, renamed when closed, no silent overwrite, numbered bags after a reset with the states
+// counted per bag, topics recorded under their resolved names, latched connections.
+#include "ehd_capsule/ros/bag_recorder.h"
+
+#include <gtest/gtest.h>
+#include <rosbag/view.h>
+#include <std_msgs/String.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace ehd::ros_node {
+namespace {
+
+namespace fs = std::filesystem;
+
+class BagRecorderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char dir[] = "/tmp/ehd_bag_recorder_test.XXXXXX";
+    ASSERT_NE(mkdtemp(dir), nullptr);
+    dir_ = dir;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+  static BagRecorder Make(const std::string& path, bool overwrite = false) {
+    return BagRecorder(path, overwrite, "/ehd_test",
+                       [](const std::string& topic) { return "/ns/" + topic; });
+  }
+  static std_msgs::String Text(const std::string& text) {
+    std_msgs::String m;
+    m.data = text;
+    return m;
+  }
+  // Messages per topic of a closed bag.
+  static std::map<std::string, int> Topics(const std::string& path) {
+    rosbag::Bag bag(path, rosbag::bagmode::Read);
+    rosbag::View view(bag);
+    std::map<std::string, int> count;
+    for (const rosbag::MessageInstance& m : view) ++count[m.getTopic()];
+    return count;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(BagRecorderTest, ActiveWhileOpenRenamedWhenClosed) {
+  const std::string path = Path("run.bag");
+  BagRecorder rec = Make(path);
+  EXPECT_FALSE(rec.is_open());
+  rec.Open();
+  EXPECT_TRUE(rec.is_open());
+  EXPECT_TRUE(fs::exists(path + ".active"));
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_TRUE(rec.Write("state", Text("a"), ros::Time(1.0)));
+  rec.CountState();
+  EXPECT_TRUE(rec.Write("state", Text("b"), ros::Time(0)));  // a zero stamp is taken as 1 ns
+  rec.CountState();
+  EXPECT_TRUE(rec.Write("/diagnostics", Text("c"), ros::Time(2.0)));
+  EXPECT_EQ(rec.states(), 2);
+  rec.Close();
+  EXPECT_FALSE(rec.is_open());
+  EXPECT_FALSE(fs::exists(path + ".active"));
+  ASSERT_TRUE(fs::exists(path));
+  const auto topics = Topics(path);
+  EXPECT_EQ(topics.at("/ns/state"), 2);  // relative names resolved
+  EXPECT_EQ(topics.at("/diagnostics"), 1);
+  EXPECT_FALSE(rec.Write("state", Text("d"), ros::Time(3.0))) << "written after Close";
+  EXPECT_TRUE(rec.failure().empty());
+}
+
+TEST_F(BagRecorderTest, RefusesAnExistingBagUnlessOverwrite) {
+  const std::string path = Path("old.bag");
+  std::ofstream(path) << "an earlier run";
+  BagRecorder rec = Make(path);
+  try {
+    rec.Open();
+    FAIL() << "an existing bag was opened";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("exists"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(rec.is_open());
+  std::ifstream in(path);
+  std::string text;
+  std::getline(in, text);
+  EXPECT_EQ(text, "an earlier run");
+  // A stale .active counts as existing too.
+  fs::remove(path);
+  std::ofstream(path + ".active") << "killed";
+  EXPECT_THROW(Make(path).Open(), std::invalid_argument);
+  BagRecorder again = Make(path, /*overwrite=*/true);
+  again.Open();
+  again.Close();
+  EXPECT_EQ(Topics(path).size(), 0u);
+}
+
+TEST_F(BagRecorderTest, ResetsRecordNumberedBagsCountedPerBag) {
+  const std::string path = Path("series.bag");
+  BagRecorder rec = Make(path);
+  rec.Open();
+  for (int i = 0; i < 3; ++i) {
+    rec.Write("state", Text("x"), ros::Time(1.0 + i));
+    rec.CountState();
+  }
+  rec.OpenNext();
+  EXPECT_TRUE(fs::exists(path));
+  EXPECT_EQ(rec.path(), Path("series.1.bag"));
+  EXPECT_EQ(rec.serial(), 1);
+  EXPECT_EQ(rec.states(), 0);
+  rec.Write("state", Text("y"), ros::Time(1.0));
+  rec.CountState();
+  EXPECT_EQ(rec.states(), 1);
+  rec.OpenNext();
+  EXPECT_EQ(rec.path(), Path("series.2.bag"));
+  rec.Close();
+  EXPECT_EQ(Topics(path).at("/ns/state"), 3);
+  EXPECT_EQ(Topics(Path("series.1.bag")).at("/ns/state"), 1);
+  EXPECT_TRUE(fs::exists(Path("series.2.bag")));
+}
+
+TEST_F(BagRecorderTest, LatchedConnection) {
+  const std::string path = Path("latched.bag");
+  BagRecorder rec = Make(path);
+  rec.Open();
+  rec.WriteLatched("/tf_static", Text("frame"), ros::Time(0));
+  rec.Close();
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  rosbag::View view(bag);
+  ASSERT_EQ(view.size(), 1u);
+  const rosbag::ConnectionInfo* c = view.getConnections().front();
+  EXPECT_EQ(c->topic, "/tf_static");
+  ASSERT_TRUE(c->header);
+  EXPECT_EQ(c->header->at("latching"), "1");
+  EXPECT_EQ(c->header->at("callerid"), "/ehd_test");
+}
+
+// A write over the file size limit (ulimit -f, as a full disk): the recording stops with the OS's
+// reason, the error callback runs once, later writes are refused, and neither closing nor
+// destroying the recorder throws (rosbag's close of such a bag does: status 134 at exit).
+TEST_F(BagRecorderTest, WriteFailureStopsTheRecordingWithTheOsReason) {
+  const std::string path = Path("limited.bag");
+  std::signal(SIGXFSZ, SIG_IGN);  // as the node: the write fails instead of killing the process
+  struct rlimit saved {};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);
+  std::vector<std::string> errors;
+  {
+    BagRecorder rec = Make(path);
+    rec.set_on_error([&errors](const std::string& why) { errors.push_back(why); });
+    rec.Open();
+    struct rlimit limit = saved;
+    limit.rlim_cur = 64 * 1024;
+    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &limit), 0);
+    const std_msgs::String big = Text(std::string(4096, 'x'));
+    int written = 0;
+    while (written < 1000 && rec.Write("state", big, ros::Time(1.0 + written))) ++written;
+    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &saved), 0);
+    EXPECT_LT(written, 1000) << "the file size limit was never hit";
+    EXPECT_FALSE(rec.is_open());
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_EQ(errors[0], rec.failure());
+    EXPECT_NE(rec.failure().find("writing the bag " + path + ".active failed"), std::string::npos)
+        << rec.failure();
+    EXPECT_NE(rec.failure().find(std::strerror(EFBIG)), std::string::npos) << rec.failure();
+    EXPECT_NE(rec.failure().find("ulimit -f"), std::string::npos) << rec.failure();
+    EXPECT_FALSE(rec.Write("state", big, ros::Time(2000.0)));
+    EXPECT_EQ(errors.size(), 1u);
+    EXPECT_NO_THROW(rec.Close());
+  }  // destroyed without an exception
+  EXPECT_TRUE(fs::exists(path + ".active")) << "the failed bag keeps its .active name";
+  EXPECT_FALSE(fs::exists(path));
+}
+
+TEST(OsReason, NamesTheLimitOrTheFullDisk) {
+  EXPECT_NE(OsReason(EFBIG, "/nonexistent/x.bag").find(std::strerror(EFBIG)), std::string::npos);
+  EXPECT_EQ(OsReason(ENOSPC, "/tmp/x.bag").find(std::strerror(ENOSPC)), 0u);
+  EXPECT_EQ(OsReason(0, "/tmp/no_such_file.bag"), "");  // nothing known
+}
+
+}  // namespace
+}  // namespace ehd::ros_node

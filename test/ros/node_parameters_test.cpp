@@ -1,0 +1,100 @@
+// The node's parameters without a ROS master: the checks of ValidateNodeParameters (each names
+// the parameter) and the scene overrides made of ~set, ~start_Ca_E and ~start_Ca.
+#include "ehd_capsule/ros/node_parameters.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace ehd::ros_node {
+namespace {
+
+// The message of the std::invalid_argument that Validate throws for p ("" when it accepts p).
+std::string Refusal(const NodeParameters& p) {
+  try {
+    ValidateNodeParameters(p);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(NodeParameters, DefaultsAreValid) {
+  const NodeParameters p;
+  EXPECT_EQ(Refusal(p), "");
+  EXPECT_EQ(p.scene, "shear_field");
+  EXPECT_EQ(p.bag, "ehd_capsule.bag");
+  EXPECT_FALSE(p.batch());
+  EXPECT_EQ(p.record_error_action(), RecordErrorAction::kPause);
+}
+
+TEST(NodeParameters, EachInvalidValueIsRefusedNamingTheParameter) {
+  const std::pair<std::function<void(NodeParameters&)>, std::string> cases[] = {
+      {[](NodeParameters& p) { p.steps = -1; }, "~steps"},
+      {[](NodeParameters& p) { p.publish_every = 0; }, "~publish_every"},
+      {[](NodeParameters& p) { p.markers_every = -2; }, "~markers_every"},
+      {[](NodeParameters& p) { p.velocity_stride = 0; }, "~velocity_stride"},
+      {[](NodeParameters& p) { p.surface_colour = "bogus"; }, "surface_colour"},
+      {[](NodeParameters& p) { p.world_frame = "ehd"; }, "~world_frame"},
+      {[](NodeParameters& p) { p.world_frame = ""; }, "~world_frame"},
+      {[](NodeParameters& p) { p.field_stride = -1; }, "~field_stride"},
+      {[](NodeParameters& p) { p.field_interval = 0; }, "~field_interval"},
+      {[](NodeParameters& p) { p.field_rate = -1; }, "~field_rate"},
+      {[](NodeParameters& p) { p.on_record_error = "ignore"; }, "~on_record_error"},
+      {[](NodeParameters& p) { p.until_steady = -1e-3; }, "~until_steady"},
+      {[](NodeParameters& p) { p.throttled_rate = 0; }, "~throttled_rate"},
+  };
+  for (const auto& [change, name] : cases) {
+    NodeParameters p;
+    change(p);
+    const std::string refusal = Refusal(p);
+    EXPECT_NE(refusal.find(name), std::string::npos) << name << ": '" << refusal << "'";
+  }
+}
+
+TEST(NodeParameters, RecordErrorAction) {
+  NodeParameters p;
+  p.on_record_error = "stop";
+  EXPECT_EQ(p.record_error_action(), RecordErrorAction::kStop);
+  p.on_record_error = "pause";
+  EXPECT_EQ(p.record_error_action(), RecordErrorAction::kPause);
+}
+
+TEST(NodeParameters, SceneOverridesFromANestedDictionary) {
+  XmlRpc::XmlRpcValue set;
+  set["Ca"] = 0.1;  // the shortest text that reads back the same double
+  set["N"] = 64;
+  set["flag"] = true;
+  set["name"] = std::string("x");
+  set["geometry"]["half_width"] = 3;
+  const std::vector<std::string> o = SceneOverrides(set);
+  // XmlRpc keeps a struct's keys sorted.
+  const std::vector<std::string> expected = {"Ca=0.1", "N=64", "flag=true", "geometry.half_width=3",
+                                             "name=x"};
+  EXPECT_EQ(o, expected);
+}
+
+TEST(NodeParameters, SceneOverridesRefuseWhatIsNotADictionary) {
+  XmlRpc::XmlRpcValue number(3.5);
+  EXPECT_THROW(SceneOverrides(number), std::invalid_argument);
+  XmlRpc::XmlRpcValue set;
+  set["list"][0] = 1;  // an array
+  try {
+    SceneOverrides(set);
+    FAIL() << "an array was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("~set/list"), std::string::npos) << e.what();
+  }
+}
+
+TEST(NodeParameters, StartValuesBelowZeroKeepTheScenes) {
+  EXPECT_TRUE(StartValueOverrides(-1, -1).empty());
+  EXPECT_EQ(StartValueOverrides(0.3, -1), std::vector<std::string>{"Ca_E=0.3"});
+  const std::vector<std::string> both = {"Ca_E=0", "Ca=0.05"};
+  EXPECT_EQ(StartValueOverrides(0.0, 0.05), both);
+}
+
+}  // namespace
+}  // namespace ehd::ros_node

@@ -1,0 +1,49 @@
+// The run controller's console lines without a ROS master: the progress line, the summary and
+// the large-run warning.
+#include "ehd_capsule/ros/run_controller.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace ehd::ros_node {
+namespace {
+
+SimulationState State() {
+  SimulationState s;
+  s.step = 120;
+  s.time = 0.3;
+  s.dxy = 0.123456;
+  s.inclination = 0.25 * M_PI;
+  s.area_drift = 1e-5;
+  return s;
+}
+
+TEST(RunController, ProgressLine) {
+  EXPECT_EQ(FormatProgressLine(State(), "1/k", 499.6),
+            "step 120  t = 0.3 1/k  D_xy = 0.12346  theta/pi = 0.2500  area drift = 1.00e-05  "
+            "500 steps/s");
+}
+
+TEST(RunController, Summary) {
+  EXPECT_EQ(FormatSummary("ran", State(), "1/k", 2.0),
+            "summary: ran after 120 steps, t = 0.3 1/k: D_xy = 0.12346, theta/pi = 0.2500, area "
+            "drift = 1.00e-05; 2.0 s wall (60 steps/s)");
+  EXPECT_NE(FormatSummary("ran", State(), "1/k", 0.0).find("(0 steps/s)"), std::string::npos);
+}
+
+TEST(RunController, LargeRunWarning) {
+  Scene scene;
+  LatticeUnits units;
+  units.time_unit = "1/k";
+  scene.N = 64;
+  units.steps_per_time_unit = 1000;
+  EXPECT_EQ(LargeRunWarning(scene, units), "");
+  scene.N = 4096;  // 4 GB of fluid state
+  const std::string warning = LargeRunWarning(scene, units);
+  EXPECT_NE(warning.find("N = 4096"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("Lower N"), std::string::npos) << warning;
+}
+
+}  // namespace
+}  // namespace ehd::ros_node
