@@ -35,7 +35,7 @@
 #include "ehd_capsule/diagnostics/shape_diagnostics.h"
 #include "ehd_capsule/diagnostics/tank_treading.h"
 #include "ehd_capsule/geometry/initial_shapes.h"
-#include "stokes_bie.h"
+#include "ehd_capsule/reference/stokes_bie.h"
 
 namespace {
 

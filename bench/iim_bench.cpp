@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "ehd_capsule/electric/fast_iim_solver.h"
-#include "ehd_capsule/electric/interface_examples.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
+#include "ehd_capsule/reference/interface_examples.h"
 
 int main() {
   using namespace ehd;

@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "command.h"
-#include "ehd_capsule/electric/interface_examples_3d.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver_3d.h"
+#include "ehd_capsule/reference/interface_examples_3d.h"
 
 namespace ehd::cli {
 namespace {

@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "command.h"
-#include "ehd_capsule/electric/correction_function_solver.h"
 #include "ehd_capsule/electric/fast_iim_solver.h"
 #include "ehd_capsule/electric/fast_iim_solver_3d.h"
-#include "ehd_capsule/electric/interface_examples.h"
-#include "ehd_capsule/electric/interface_examples_3d.h"
+#include "ehd_capsule/reference/correction_function_solver.h"
+#include "ehd_capsule/reference/interface_examples.h"
+#include "ehd_capsule/reference/interface_examples_3d.h"
 
 namespace ehd::cli {
 namespace {

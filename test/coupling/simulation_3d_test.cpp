@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "ehd_capsule/coupling/simulation.h"
-#include "ehd_capsule/electric/interface_examples_3d.h"
+#include "ehd_capsule/reference/interface_examples_3d.h"
 
 namespace ehd {
 namespace {

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "ehd_capsule/electric/correction_function_solver.h"
 #include "ehd_capsule/electric/fast_iim_solver.h"
-#include "ehd_capsule/electric/interface_examples.h"
+#include "ehd_capsule/reference/correction_function_solver.h"
+#include "ehd_capsule/reference/interface_examples.h"
 
 namespace ehd {
 namespace {

@@ -2,7 +2,7 @@
 // a sphere in a uniform field (the leaky-dielectric conduction problem, [phi] = 0, [sigma phi_n]
 // = 0) at conductivity ratios sigma^-/sigma^+ = 0.1, 0.5, 2, 10 and 1000, a general problem on an
 // ellipsoid ([phi], [sigma phi_n] and f all non-zero) at 1/10, 10 and 1000 and on the non-convex
-// red-cell surface (electric/interface_examples_3d.h). The potential and [phi_n] at the vertices
+// red-cell surface (reference/interface_examples_3d.h). The potential and [phi_n] at the vertices
 // must converge at second order, and so must the Maxwell traction at the vertices and the grid
 // field E = -grad phi (observed orders printed). Above sigma^-/sigma^+ = 10 the solver seeks
 // [phi_n] in a spherical-harmonic basis with the flux balance deflated; without it GMRES stalls at
@@ -18,7 +18,7 @@
 #include <functional>
 #include <string>
 
-#include "ehd_capsule/electric/interface_examples_3d.h"
+#include "ehd_capsule/reference/interface_examples_3d.h"
 
 namespace ehd {
 namespace {
@@ -166,7 +166,7 @@ TEST(FastIimSolver3D, SphereInAFieldThousandTimesMoreConductingInside) {
   ExpectSecondOrderSphere(1000.0, 1.0);
 }
 
-// A shared example (electric/interface_examples_3d.h) on N^3: max errors of phi over the nodes
+// A shared example (reference/interface_examples_3d.h) on N^3: max errors of phi over the nodes
 // and of [phi_n] at the vertices.
 Errors SharedExample(const std::string& name, int n, double sigma_minus, double sigma_plus) {
   const InterfaceExample3D e = MakeInterfaceExample3D(name, sigma_minus, sigma_plus);

@@ -15,9 +15,9 @@
 #include "ehd_capsule/electric/electric_field.h"
 #include "ehd_capsule/electric/gmres.h"
 #include "ehd_capsule/electric/interface_classification.h"
-#include "ehd_capsule/electric/interface_examples.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
 #include "ehd_capsule/electric/normal_derivative_fit.h"
+#include "ehd_capsule/reference/interface_examples.h"
 
 namespace ehd {
 namespace {

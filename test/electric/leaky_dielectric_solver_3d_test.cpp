@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "ehd_capsule/electric/interface_examples_3d.h"
+#include "ehd_capsule/reference/interface_examples_3d.h"
 
 namespace ehd {
 namespace {
@@ -26,7 +26,7 @@ TEST(LeakyDielectricSolver3D, SphereInAUniformFieldMatchesTheFreeSpaceTraction) 
   const TriangleMesh mesh = IcosphereMesh(4, radius);
   const InterfaceSolveReport report = solver.Solve(mesh, 0.0);
   EXPECT_TRUE(report.converged);
-  // Free space (electric/interface_examples_3d.h).
+  // Free space (reference/interface_examples_3d.h).
   double worst = 0, scale = 0;
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
   for (int v = 0; v < mesh.vertex_count(); ++v) {

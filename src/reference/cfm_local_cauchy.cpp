@@ -1,7 +1,7 @@
 // Least-squares solution of the CFM local Cauchy problem, song2019 eq. (18); see the header for
 // the functional, the two bases and where the code departs from the text.
 
-#include "ehd_capsule/electric/cfm_local_cauchy.h"
+#include "ehd_capsule/reference/cfm_local_cauchy.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,7 +1,7 @@
 // The correction function method (song2019 sec. 2.3) as a whole: consistency of the corrected
 // 5-point stencil, second-order convergence in the max norm on the sec. 2.3.5 examples and on
 // non-circular curves, and refusal of unequal conductivities.
-#include "ehd_capsule/electric/correction_function_solver.h"
+#include "ehd_capsule/reference/correction_function_solver.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <string>
 
 #include "ehd_capsule/electric/gmres.h"
-#include "ehd_capsule/electric/interface_examples.h"
+#include "ehd_capsule/reference/interface_examples.h"
 
 namespace ehd {
 namespace {

@@ -28,11 +28,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "ehd_capsule/electric/cfm_local_cauchy.h"
 #include "ehd_capsule/electric/fast_poisson_solver.h"
 #include "ehd_capsule/electric/interface_problem.h"
 #include "ehd_capsule/geometry/closed_curve.h"
 #include "ehd_capsule/geometry/grid.h"
+#include "ehd_capsule/reference/cfm_local_cauchy.h"
 
 namespace ehd {
 

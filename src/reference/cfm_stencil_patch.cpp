@@ -1,6 +1,6 @@
 // CFM integration region Omega_Sigma^ij (song2019 sec. 2.3.2) and interface quadrature; see the
 // header for the construction and the one safeguard added to the text.
-#include "ehd_capsule/electric/cfm_stencil_patch.h"
+#include "ehd_capsule/reference/cfm_stencil_patch.h"
 
 #include <algorithm>
 #include <cmath>

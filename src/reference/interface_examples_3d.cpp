@@ -1,4 +1,4 @@
-#include "ehd_capsule/electric/interface_examples_3d.h"
+#include "ehd_capsule/reference/interface_examples_3d.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,6 +1,6 @@
 // Correction function method, song2019 sec. 2.3 (eqs. (7)-(18)); see the header for the scheme,
 // the sign of the correction C_ij and how [f] is continued across the interface.
-#include "ehd_capsule/electric/correction_function_solver.h"
+#include "ehd_capsule/reference/correction_function_solver.h"
 
 #include <omp.h>
 
@@ -14,7 +14,7 @@
 #include <string>
 
 #include "ehd_capsule/electric/box_face_check.h"
-#include "ehd_capsule/electric/cfm_stencil_patch.h"
+#include "ehd_capsule/reference/cfm_stencil_patch.h"
 
 namespace ehd {
 namespace {

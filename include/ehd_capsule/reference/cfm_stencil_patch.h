@@ -17,8 +17,8 @@
 
 #include <Eigen/Core>
 
-#include "ehd_capsule/electric/cfm_local_cauchy.h"
 #include "ehd_capsule/geometry/closed_curve.h"
+#include "ehd_capsule/reference/cfm_local_cauchy.h"
 
 namespace ehd {
 

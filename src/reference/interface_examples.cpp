@@ -1,6 +1,6 @@
 // Manufactured interface problems (song2019 sec. 2.3.5 and 2.5, plus an ellipse and a star);
 // see interface_examples.h for each exact solution and where the text's f or jump was corrected.
-#include "ehd_capsule/electric/interface_examples.h"
+#include "ehd_capsule/reference/interface_examples.h"
 
 #include <cmath>
 #include <stdexcept>

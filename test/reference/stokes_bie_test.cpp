@@ -1,4 +1,4 @@
-// Self-checks of the boundary-integral reference solver bench/stokes_bie.h (equal viscosities,
+// Self-checks of the boundary-integral reference solver reference/stokes_bie.h (equal viscosities,
 // Re = 0), which drives the core MembraneModel force:
 //   (1) a circle under uniform tension (drop gamma, or a uniformly stretched Hookean circle) is an
 //       equilibrium: oint G . n dl = 0, so the velocity vanishes to quadrature accuracy;
@@ -10,7 +10,7 @@
 //   (3) the same balance with the shear's radial velocity (k a / 2) sin 2 phi gives the 2D
 //       small-deformation Taylor result for viscosity ratio 1: D = delta = mu k a / gamma = Ca
 //       (c = 1), theta = pi/4 - Ca (radians) to first order (test below).
-#include "../../bench/stokes_bie.h"
+#include "ehd_capsule/reference/stokes_bie.h"
 
 #include <gtest/gtest.h>
 

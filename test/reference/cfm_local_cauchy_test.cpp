@@ -1,7 +1,7 @@
 // Checks of the CFM local Cauchy least-squares problem (song2019 sec. 2.3.2-2.3.3) on every
 // irregular 5-point stencil of a grid cut by a circle or an ellipse: the fitted correction
 // function D is compared with a known D whose Laplacian and Cauchy data are given exactly.
-#include "ehd_capsule/electric/cfm_local_cauchy.h"
+#include "ehd_capsule/reference/cfm_local_cauchy.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <functional>
 #include <vector>
 
-#include "ehd_capsule/electric/cfm_stencil_patch.h"
 #include "ehd_capsule/geometry/grid.h"
+#include "ehd_capsule/reference/cfm_stencil_patch.h"
 
 namespace ehd {
 namespace {
