@@ -256,6 +256,8 @@ int RunIim(const std::vector<std::string>& args) {
   bool checks = true;
   double gmres_tolerance = -1.0;  // -1: the solver's default
   double marker_spacing = -1.0;   // in h; -1: the example's default (about 2 h)
+  double control_spacing = -1.0;  // FastIimOptions::min_control_spacing_h; -1: its default
+  double wavelength = -1.0;       // FastIimOptions::fourier_wavelength_h; -1: its default
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--example") {
@@ -292,6 +294,12 @@ int RunIim(const std::vector<std::string>& args) {
       if (!(gmres_tolerance > 0.0 && gmres_tolerance < 1.0)) {
         throw UsageError("--gmres-tolerance must be in (0, 1)");
       }
+    } else if (a == "--fourier-wavelength") {
+      wavelength = ParseDouble(a, OptionValue(args, i));
+      if (!(wavelength >= 0.0)) throw UsageError("--fourier-wavelength must be >= 0");
+    } else if (a == "--control-spacing") {
+      control_spacing = ParseDouble(a, OptionValue(args, i));
+      if (!(control_spacing > 0.0)) throw UsageError("--control-spacing must be > 0");
     } else if (a == "--no-checks") {
       checks = false;
     } else if (a == "--csv") {
@@ -312,12 +320,12 @@ int RunIim(const std::vector<std::string>& args) {
   }
   if (csv) {
     std::cout << "example,method,N,markers,sigma_minus,sigma_plus,linf_error,order,iterations,"
-                 "solve_ms,estimated_error,status\n";
+                 "solve_ms,estimated_error,jump_error,status\n";
   } else {
     std::printf("example %s: %s\nmethod %s, sigma- = %g, sigma+ = %g\n", e.name.c_str(),
                 e.description.c_str(), method.c_str(), e.sigma_minus, e.sigma_plus);
-    std::printf("%6s %8s %12s %9s %7s %6s %10s %10s\n", "N", "markers", "Linf error", "ratio",
-                "order", "iter", "ms/solve", "est. error");
+    std::printf("%6s %8s %12s %9s %7s %6s %10s %10s %10s\n", "N", "markers", "Linf error", "ratio",
+                "order", "iter", "ms/solve", "est. error", "G error");
   }
   double previous = 0.0;
   int previous_n = 0;
@@ -333,11 +341,14 @@ int RunIim(const std::vector<std::string>& args) {
     const InterfaceProblem problem = SampleInterfaceProblem(e, grid, curve);
     std::vector<double> phi;
     InterfaceSolveReport report;
+    double jump_error = -1.0;  // of [phi_n] (iim only)
     try {
       if (method == "iim") {
         FastIimOptions options;
         if (deferred >= 0) options.deferred_correction = deferred == 1;
         if (gmres_tolerance > 0.0) options.gmres.tolerance = gmres_tolerance;
+        if (control_spacing > 0.0) options.min_control_spacing_h = control_spacing;
+        if (wavelength >= 0.0) options.fourier_wavelength_h = wavelength;
         if (!checks) {
           options.max_curvature_h = options.max_marker_oscillation = options.verify_min_ratio =
               std::numeric_limits<double>::infinity();
@@ -348,6 +359,7 @@ int RunIim(const std::vector<std::string>& args) {
         // Time a second, identical solve from a cold guess (plans and buffers already made).
         g.clear();
         report = solver.Solve(curve, problem, g, phi);
+        jump_error = JumpNormalDerivativeError(e, curve, g);
       } else {
         CorrectionFunctionOptions options;
         if (deferred >= 0) options.deferred_correction = deferred == 1;
@@ -360,7 +372,7 @@ int RunIim(const std::vector<std::string>& args) {
       // on with the next grid; the exit status is 1 at the end.
       ++refused;
       if (csv) {
-        std::printf("%s,%s,%d,%d,%g,%g,,,,,,refused: %s\n", e.name.c_str(), method.c_str(), n, m,
+        std::printf("%s,%s,%d,%d,%g,%g,,,,,,,refused: %s\n", e.name.c_str(), method.c_str(), n, m,
                     e.sigma_minus, e.sigma_plus, err.what());
       } else {
         std::printf("%6d %8d   refused: %s\n", n, m, err.what());
@@ -377,19 +389,21 @@ int RunIim(const std::vector<std::string>& args) {
       std::snprintf(estimate_text, sizeof estimate_text, "%.2e", report.estimated_error);
     }
     const std::string estimate = estimate_text;
+    char jump_text[32] = "-";
+    if (jump_error >= 0) std::snprintf(jump_text, sizeof jump_text, "%.2e", jump_error);
     const double order =
         previous > 0 ? std::log(ratio) / std::log(static_cast<double>(n) / previous_n) : 0.0;
     if (csv) {
-      std::printf("%s,%s,%d,%d,%g,%g,%.6e,%s,%d,%.3f,%s,ok\n", e.name.c_str(), method.c_str(), n, m,
-                  e.sigma_minus, e.sigma_plus, err,
+      std::printf("%s,%s,%d,%d,%g,%g,%.6e,%s,%d,%.3f,%s,%s,ok\n", e.name.c_str(), method.c_str(), n,
+                  m, e.sigma_minus, e.sigma_plus, err,
                   previous > 0 ? std::to_string(order).c_str() : "", report.iterations,
-                  report.solve_ms, estimate.c_str());
+                  report.solve_ms, estimate.c_str(), jump_error >= 0 ? jump_text : "");
     } else if (previous > 0) {
-      std::printf("%6d %8d %12.4e %9.4f %7.3f %6d %10.2f %10s\n", n, m, err, ratio, order,
-                  report.iterations, report.solve_ms, estimate.c_str());
+      std::printf("%6d %8d %12.4e %9.4f %7.3f %6d %10.2f %10s %10s\n", n, m, err, ratio, order,
+                  report.iterations, report.solve_ms, estimate.c_str(), jump_text);
     } else {
-      std::printf("%6d %8d %12.4e %9s %7s %6d %10.2f %10s\n", n, m, err, "-", "-",
-                  report.iterations, report.solve_ms, estimate.c_str());
+      std::printf("%6d %8d %12.4e %9s %7s %6d %10.2f %10s %10s\n", n, m, err, "-", "-",
+                  report.iterations, report.solve_ms, estimate.c_str(), jump_text);
     }
     previous = err;
     previous_n = n;
@@ -400,7 +414,7 @@ int RunIim(const std::vector<std::string>& args) {
 const CommandRegistration kIim(
     {"iim", "convergence tables of the fast IIM / CFM on the interface examples (2D and 3D)",
      "usage: ehd_sim iim [--dim 2] [--example "
-     "1|2|3|3a|3b|4|cfm1|cfm2|ellipse|star|star_tight|biconcave]\n"
+     "1|2|3|3a|3b|4|cfm1|cfm2|ellipse|star|star_tight|star_sharp|biconcave]\n"
      "                   [--method iim|cfm] [--sigma-minus S] [--sigma-plus S]\n"
      "                   [--grids 40,80,160,320]\n"
      "                   [--markers M | --marker-spacing S] [--[no-]deferred-correction]\n"

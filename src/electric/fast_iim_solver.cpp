@@ -390,11 +390,18 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
     // controls above would have; the residual is projected on the same basis with the arc
     // weights (Galerkin). The span does not depend on which marker is first nor on the marker
     // direction (s -> s + c rotates each cos/sin pair, s -> P - s flips the sines).
-    const bool fourier =
-        options_.control_basis == ControlBasis::kFourier && static_cast<int>(control_.size()) < m;
+    const bool by_wavelength = sigma_minus_ >= options_.fourier_basis_min_ratio * sigma_plus_ &&
+                               options_.fourier_wavelength_h > 0.0;
+    const bool fourier = options_.control_basis == ControlBasis::kFourier &&
+                         (static_cast<int>(control_.size()) < m || by_wavelength);
     int mc = static_cast<int>(control_.size());
     if (fourier) {
-      const int k_max = std::max(2, (mc - 1) / 2);
+      const int k_max =
+          by_wavelength
+              ? std::max(
+                    2, std::min(static_cast<int>(perimeter_ / (options_.fourier_wavelength_h * h)),
+                                (m - 1) / 2))
+              : std::max(2, (mc - 1) / 2);
       mc = 2 * k_max + 1;
       basis_.resize(m, mc);
       double arc = 0.0;

@@ -2,6 +2,7 @@
 // see interface_examples.h for each exact solution and where the text's f or jump was corrected.
 #include "ehd_capsule/reference/interface_examples.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -60,8 +61,8 @@ bool IsExample3(const std::string& name) { return name == "3" || name == "3a" ||
 }  // namespace
 
 std::vector<std::string> InterfaceExampleNames() {
-  return {"1",    "2",    "3",       "3a",   "3b",         "4",
-          "cfm1", "cfm2", "ellipse", "star", "star_tight", "biconcave"};
+  return {"1",    "2",       "3",    "3a",         "3b",         "4",        "cfm1",
+          "cfm2", "ellipse", "star", "star_tight", "star_sharp", "biconcave"};
 }
 
 InterfaceExample MakeInterfaceExample(const std::string& name) {
@@ -130,6 +131,15 @@ InterfaceExample MakeInterfaceExample(const std::string& name) {
         "(h at N = 82), smooth phi+- (ours)";
     e.curve = [](double t) {
       const double r = 0.5 + 0.18 * std::sin(5 * t);
+      return Vec(0.02 + r * std::cos(t), 0.01 + r * std::sin(t));
+    };
+    SetSmoothPair(e);
+  } else if (name == "star_sharp") {
+    e.description =
+        "five-petal star r=0.5+0.2 sin(5t) at (0.02,0.01), petal amplitude 0.4 of the mean radius, "
+        "troughs of curvature radius 0.0191 (2 h at N = 209), smooth phi+- (ours)";
+    e.curve = [](double t) {
+      const double r = 0.5 + 0.2 * std::sin(5 * t);
       return Vec(0.02 + r * std::cos(t), 0.01 + r * std::sin(t));
     };
     SetSmoothPair(e);
@@ -233,6 +243,18 @@ std::vector<double> ExactSolution(const InterfaceExample& e, const Grid2D& grid,
     }
   }
   return u;
+}
+
+double JumpNormalDerivativeError(const InterfaceExample& example, const ClosedCurve& curve,
+                                 const std::vector<double>& g) {
+  double scale = 0.0, error = 0.0;
+  for (int k = 0; k < curve.size(); ++k) {
+    const Eigen::Vector2d x = curve.markers().col(k), n = curve.AtMarker(k).normal;
+    const double minus = example.grad_minus(x).dot(n), plus = example.grad_plus(x).dot(n);
+    scale = std::max({scale, std::abs(plus - minus), std::abs(minus), std::abs(plus)});
+    error = std::max(error, std::abs(g[k] - (plus - minus)));
+  }
+  return scale > 0 ? error / scale : error;
 }
 
 }  // namespace ehd

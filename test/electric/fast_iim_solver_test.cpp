@@ -439,6 +439,9 @@ TEST(FastIimSolver, MeanDeflationKeepsTheSolutionAndCutsIterationsForHighInnerCo
   FastIimOptions plain, deflated;
   plain.deflate_mean = false;
   plain.gmres.tolerance = deflated.gmres.tolerance = 1e-10;
+  // G at every marker (no wavelength-limited Fourier basis, which already removes most of the
+  // slow modes: 17 -> 15 iterations there), to see the deflation alone.
+  plain.fourier_wavelength_h = deflated.fourier_wavelength_h = 0.0;
   // This N = 80 grid is coarse for the star at 1000:1 (the verification estimates 10%); the
   // test is about the deflation, so the verifying coarse solve is off.
   plain.verify_min_ratio = deflated.verify_min_ratio = std::numeric_limits<double>::infinity();
@@ -696,7 +699,10 @@ TEST(FastIimSolver, DenseMarkersGiveTheSameSolutionInEitherDirectionAndFromAnySt
   // marker nor on the direction. Either way reversing the markers or starting at another one is
   // the same discrete problem. Before, controls were thinned from marker 0 for every
   // sigma^- != sigma^+: on this star (sigma^+/sigma^- = 10, N = 80) the error was 2.5e-3 one
-  // way and 8.2e-3 the other; now 5.4e-5 (sigma^+ > sigma^-) and 5.6e-4 (sigma^- > sigma^+).
+  // way and 8.2e-3 the other; now 5.4e-5 (sigma^+ > sigma^-) and 1.1e-3 (sigma^- > sigma^+; 5.6e-4
+  // with as many terms as controls, 1.5 h, before the basis was limited to wavelengths >= 5 h at
+  // sigma^-/sigma^+ >= 10, FastIimOptions::fourier_wavelength_h: that basis stalls GMRES on
+  // sharper curves).
   for (const double ratio : {0.1, 10.0}) {
     const InterfaceExample e = MakeInterfaceExample("star", ratio, 1.0);
     const Grid2D g = e.MakeGrid(80);
@@ -717,7 +723,7 @@ TEST(FastIimSolver, DenseMarkersGiveTheSameSolutionInEitherDirectionAndFromAnySt
       double err = 0.0;
       for (std::size_t i = 0; i < exact.size(); ++i)
         err = std::max(err, std::abs(phi[k][i] - exact[i]));
-      EXPECT_LT(err, ratio < 1.0 ? 1e-4 : 1e-3) << "sigma ratio " << ratio << ", order " << k;
+      EXPECT_LT(err, ratio < 1.0 ? 1e-4 : 1.5e-3) << "sigma ratio " << ratio << ", order " << k;
       ++k;
     }
     double d_cw = 0.0, d_shift = 0.0;
@@ -822,6 +828,40 @@ TEST(FastIimSolver, VerificationOnlyAboveItsRatioAndRefusedWhereItCannotRun) {
       // An odd grid cannot be coarsened twice: at 1000:1 the answer cannot be verified.
       EXPECT_THROW(b.Solve(c, SampleInterfaceProblem(high, g, c), gv, phi), SolverError);
     }
+  }
+}
+
+// sigma^- = 1000 sigma^+ on five-petal stars with troughs of curvature radius 2 h at the coarsest
+// grid (star_tight: 0.0245 = 2 h at N = 164; star_sharp, petals 0.4 of the mean radius: 0.0191 =
+// 2 h at N = 209): G in the Fourier basis of wavelengths >= 5 h (fourier_wavelength_h). Every
+// solve passes the solver's own checks (resolution, oscillation, the verifying coarse solve),
+// [phi_n] is within the verification tolerance of the exact jump, converges at order >= 1.8, and
+// GMRES needs a bounded number of iterations. With as many terms as controls (the basis before),
+// star_tight took 185 iterations at N = 160 and did not converge in 400 at N = 224 and 320.
+TEST(FastIimSolver, SharpStarsAtHighInnerConductivityConvergeWithBoundedIterations) {
+  for (const auto& [name, grids] :
+       {std::pair<const char*, std::pair<int, int>>{"star_tight", {224, 320}},
+        {"star_sharp", {224, 320}}}) {
+    const InterfaceExample e = MakeInterfaceExample(name, 1000.0, 1.0);
+    double error[2];
+    int i = 0;
+    for (const int n : {grids.first, grids.second}) {
+      const Grid2D g = e.MakeGrid(n);
+      const ClosedCurve c(e.Markers(e.DefaultMarkers(n)));
+      FastIimSolver solver(g, PoissonBoundaries{});
+      std::vector<double> gv, phi;
+      InterfaceSolveReport r;
+      ASSERT_NO_THROW(r = solver.Solve(c, SampleInterfaceProblem(e, g, c), gv, phi))
+          << name << " N = " << n;
+      EXPECT_LE(r.iterations, 25) << name << " N = " << n;
+      EXPECT_LT(r.estimated_error, 0.05) << name << " N = " << n;
+      error[i] = JumpNormalDerivativeError(e, c, gv);
+      EXPECT_LT(error[i], 0.05) << name << " N = " << n;
+      ++i;
+    }
+    const double order =
+        std::log(error[0] / error[1]) / std::log(double(grids.second) / grids.first);
+    EXPECT_GE(order, 1.8) << name << ": [phi_n] errors " << error[0] << ", " << error[1];
   }
 }
 

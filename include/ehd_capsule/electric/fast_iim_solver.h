@@ -80,6 +80,17 @@ struct FastIimOptions {
   // the Schur system for sigma^- > sigma^+.
   double min_control_spacing_h = 1.5;
   ControlBasis control_basis = ControlBasis::kFourier;
+  // A much more conducting inside, sigma^-/sigma^+ >= fourier_basis_min_ratio (kFourier only):
+  // G is always sought in the Fourier basis, with the number of terms set by its shortest
+  // wavelength, P / k_max >= fourier_wavelength_h h (at most (M - 1) / 2 terms), as the 3D
+  // solver's harmonic basis (FastIim3DOptions::harmonic_wavelength_h). Below the ratio, or with
+  // fourier_wavelength_h = 0, as many terms as there are controls (every marker a control: no
+  // basis). Measured (docs/electric_solver.md, "A much more conducting inside"): at 1000:1 the
+  // five-petal stars with troughs of curvature radius 2 h need 15-19 GMRES iterations at every N
+  // with 5 h, where the control count stalls GMRES (185 at N = 160, > 400 at N = 224) and 4 h
+  // already grows with N (39-108).
+  double fourier_basis_min_ratio = 10.0;
+  double fourier_wavelength_h = 5.0;
   // sigma^- > sigma^+ only. The exact interior flux fixes the arc-weighted mean of the residual,
   // hence the mean of G (mu = (mean(v)/[sigma] - flux/P) / (sigma^+/[sigma])); the operator's
   // near-null mode (the equilibrium density of the curve, eigenvalue ~ -sigma^+/sigma^-, a

@@ -26,6 +26,8 @@
 //   "star" (ours) five-petal star r = 0.5 + 0.1 sin(5 theta) about (0.02, 0.01); same phi.
 //   "star_tight" (ours) the same with r = 0.5 + 0.18 sin(5 theta): troughs of curvature radius
 //         0.0245, tighter than the grid for N < 82 (the solver's resolution checks).
+//   "star_sharp" (ours) r = 0.5 + 0.2 sin(5 theta): petal amplitude 0.4 of the mean radius,
+//         troughs of curvature radius 0.0191 (2 h at N = 209).
 //   "biconcave" (ours) red-cell profile x = R cos t, y = (R/2) sin t (0.207 + 2.003 cos^2 t
 //         - 1.123 cos^4 t) (Evans-Fung), R = 0.7, about (0.02, 0.01); same phi. The dimple is
 //         only ~0.1 thick (2.5 h at N = 40), so fit and band reach across it.
@@ -63,8 +65,8 @@ struct InterfaceExample {
 };
 
 // Known names: "1", "2", "3", "3a" (= 3, sigma^+ = 10), "3b" (= 3, sigma^+ = 100), "4", "cfm1",
-// "cfm2", "ellipse", "star", "star_tight", "biconcave". Throws std::invalid_argument for an unknown
-// name (listing them).
+// "cfm2", "ellipse", "star", "star_tight", "star_sharp", "biconcave". Throws std::invalid_argument
+// for an unknown name (listing them).
 InterfaceExample MakeInterfaceExample(const std::string& name);
 // Same with the given conductivities (> 0; f and v follow from the exact phi for them).
 InterfaceExample MakeInterfaceExample(const std::string& name, double sigma_minus,
@@ -81,5 +83,10 @@ InterfaceProblem SampleInterfaceProblem(const InterfaceExample& example, const G
 // Exact phi at every grid point (region by curve.Contains).
 std::vector<double> ExactSolution(const InterfaceExample& example, const Grid2D& grid,
                                   const ClosedCurve& curve);
+
+// The error of G = [phi_n] at the markers against the example's exact jump, relative to the
+// largest of |[phi_n]|, |phi_n^-|, |phi_n^+| there (the scale of FastIimOptions::verify_tolerance).
+double JumpNormalDerivativeError(const InterfaceExample& example, const ClosedCurve& curve,
+                                 const std::vector<double>& g);
 
 }  // namespace ehd
