@@ -146,8 +146,8 @@ int main(int argc, char** argv) {
     mp.bending_modulus = units.bending_modulus;
   }
   ehd::MembraneModel membrane(mp, curve);
-  ehd::LeakyDielectricSolver electric(grid, units.sigma_minus, units.sigma_plus, units.eps_minus,
-                                      units.eps_plus);
+  ehd::LeakyDielectricSolver<2> electric(grid, units.sigma_minus, units.sigma_plus, units.eps_minus,
+                                         units.eps_plus);
   electric.SetAppliedField(units.field);
   Eigen::Matrix2Xd density, force(2, scene.M), U;
   std::vector<double> dl;

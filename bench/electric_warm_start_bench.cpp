@@ -2,7 +2,7 @@
 // from a slightly moved interface ... report both"). A drop of radius 20 (126 markers, 160^2
 // lattice grid, E = 0.01) translates and deforms smoothly; consecutive solves are `move` cells
 // apart (largest marker displacement). For each sigma_r and move: mean GMRES iterations per solve
-// over 20 solves for a cold start, the plain warm start (previous G, LeakyDielectricSolver::
+// over 20 solves for a cold start, the plain warm start (previous G, LeakyDielectricSolver<2>::
 // Solve(curve)) and the extrapolated one (Solve(curve, time)), the error of each starting guess
 // relative to max |G|, and ms per solve. Tolerance 1e-7 relative to |b| (the default).
 #include <Eigen/Core>
@@ -60,19 +60,19 @@ int main() {
   for (double sigma_r : {0.001, 0.1, 3.0, 10.0, 1000.0}) {
     for (double move : {0.01, 0.05, 0.2}) {
       const double ds = move / 0.63;  // largest displacement per unit s ~ 0.63 h
-      LeakyDielectricSolver cold(grid, sigma_r, 1.0, 2.0, 1.0);
-      LeakyDielectricSolver warm(grid, sigma_r, 1.0, 2.0, 1.0);
-      LeakyDielectricSolver extrapolated(grid, sigma_r, 1.0, 2.0, 1.0);
-      for (LeakyDielectricSolver* s : {&cold, &warm, &extrapolated}) s->SetAppliedField(0.01);
+      LeakyDielectricSolver<2> cold(grid, sigma_r, 1.0, 2.0, 1.0);
+      LeakyDielectricSolver<2> warm(grid, sigma_r, 1.0, 2.0, 1.0);
+      LeakyDielectricSolver<2> extrapolated(grid, sigma_r, 1.0, 2.0, 1.0);
+      for (LeakyDielectricSolver<2>* s : {&cold, &warm, &extrapolated}) s->SetAppliedField(0.01);
       double it[3] = {0, 0, 0}, ms[3] = {0, 0, 0}, guess_error[2] = {0, 0};
       std::vector<double> g_prev, g_prev2;
       for (int step = 0; step < solves + 2; ++step) {
         const ClosedCurve c = DropAt(5.0 + step * ds);
-        cold.set_jump_normal_derivative({});
+        cold.set_warm_start({});
         const InterfaceSolveReport rc = cold.Solve(c);
         const InterfaceSolveReport rw = warm.Solve(c);
         const InterfaceSolveReport re = extrapolated.Solve(c, step);
-        const std::vector<double>& g = cold.jump_normal_derivative();
+        const std::vector<double>& g = cold.warm_start().g;
         if (step >= 2) {
           it[0] += rc.iterations;
           it[1] += rw.iterations;

@@ -89,18 +89,15 @@ int main() {
       };
       InterfaceSolveReport report[3];
       for (int mode = 0; mode < 2; ++mode) {
-        GmresOptions gmres;
-        gmres.tolerance = tol;
-        LeakyDielectricSolver solver(g, sr, 1.0, 2.0, 1.0, gmres);
         FastIimOptions iim;
-        iim.gmres = gmres;
+        iim.gmres.tolerance = tol;
         iim.warm_start_refresh = mode == 0 ? 0 : 20;
-        solver.SetIimOptions(iim);
+        LeakyDielectricSolver<2> solver(g, sr, 1.0, 2.0, 1.0, iim);
         solver.SetAppliedField(0.01);
         solver.Solve(drop(0.0));
         report[mode + 1] = solver.Solve(drop(0.01));
         if (mode == 0) {
-          solver.set_jump_normal_derivative({});
+          solver.set_warm_start({});
           report[0] = solver.Solve(drop(0.01));
         }
       }

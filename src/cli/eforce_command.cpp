@@ -19,7 +19,6 @@
 
 #include "command.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
-#include "ehd_capsule/electric/leaky_dielectric_solver_3d.h"
 #include "ehd_capsule/reference/interface_examples_3d.h"
 
 namespace ehd::cli {
@@ -27,7 +26,7 @@ namespace {
 
 Eigen::Matrix2Xd ForceFor(int m, double sigma_r, double eps_r, int* iterations, double* ms) {
   const Grid2D grid{m, m, 8.0 / m, -4.0, -4.0};
-  LeakyDielectricSolver solver(grid, sigma_r, 1.0, eps_r, 1.0);
+  LeakyDielectricSolver<2> solver(grid, sigma_r, 1.0, eps_r, 1.0);
   solver.SetAppliedField(1.0);
   Eigen::Matrix2Xd x(2, m);
   for (int k = 0; k < m; ++k) x.col(k) << std::cos(2 * M_PI * k / m), std::sin(2 * M_PI * k / m);
@@ -45,7 +44,7 @@ struct Force3D {
 
 Force3D Force3DFor(int n, const TriangleMesh& mesh, double sigma_r, double eps_r) {
   const Grid3D grid{n, n, n, 8.0 / n, -4, -4, -4};
-  LeakyDielectricSolver3D solver(grid, sigma_r, 1.0, eps_r, 1.0);
+  LeakyDielectricSolver<3> solver(grid, sigma_r, 1.0, eps_r, 1.0);
   solver.SetAppliedField(1.0);
   const auto start = std::chrono::steady_clock::now();
   const InterfaceSolveReport& r = solver.Solve(mesh, 0.0);

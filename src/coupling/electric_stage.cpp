@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
-#include "ehd_capsule/electric/leaky_dielectric_solver_3d.h"
 
 namespace ehd {
 
@@ -61,10 +60,8 @@ void ElectricStage<D>::Reset() {
   const int n = body_.size();
   source_.load.setZero(D, n);
   source_.traction.setZero(D, n);
-  if constexpr (D == 2) {
-    solver_->set_jump_normal_derivative(std::vector<double>(n, 0.0));
-  } else {
-    solver_->set_warm_start(LeakyDielectricSolver3D::WarmStart());
+  solver_->set_warm_start(typename LeakyDielectricSolver<D>::WarmStart());
+  if constexpr (D == 3) {
     solved_positions_.resize(3, 0);
     solved_traction_.resize(3, 0);
     projector_.reset();
@@ -166,11 +163,7 @@ void ElectricStage<D>::Run(long step) {
                        std::to_string(report.iterations) + " iterations)");
   }
   source_.load = solver_->force();
-  if constexpr (D == 2) {
-    source_.traction = source_.load;  // the 2D force is per unit length already
-  } else {
-    source_.traction = solver_->traction();
-  }
+  source_.traction = solver_->traction();  // 2D: the force itself (per unit length)
   positions_at_last_solve_ = body_.positions();
   last_solve_step_ = step;
   solved_field_ = field;
@@ -184,10 +177,12 @@ void ElectricStage<D>::Run(long step) {
 template <int D>
 void ElectricStage<D>::Resampled(const typename StepData<D>::Resample& resample) {
   if constexpr (D == 2) {
-    std::vector<double> g = solver_->jump_normal_derivative();
-    if (static_cast<int>(g.size()) == body_.size()) {
-      resample(g);
-      solver_->set_jump_normal_derivative(g);
+    // G along the re-spaced markers; the time history no longer applies.
+    typename LeakyDielectricSolver<D>::WarmStart w;
+    w.g = solver_->warm_start().g;
+    if (static_cast<int>(w.g.size()) == body_.size()) {
+      resample(w.g);
+      solver_->set_warm_start(w);
     }
   }
   last_solve_step_ = -1;  // the force at the old points no longer applies
@@ -199,22 +194,13 @@ void ElectricStage<D>::Resampled(const typename StepData<D>::Resample& resample)
 template <int D>
 void ElectricStage<D>::Save(CheckpointWriter& w) const {
   w.Pod(solver_->applied_field());
-  if constexpr (D == 2) {
-    const LeakyDielectricSolver::WarmStartHistory& h = solver_->warm_start_history();
-    w.Vec(solver_->jump_normal_derivative());
-    w.Vec(h.g_previous);
-    w.Pod(h.time_previous);
-    w.Pod(h.time_last);
-    w.Mat(source_.load);
-  } else {
-    const LeakyDielectricSolver3D::WarmStart& h = solver_->warm_start();
-    w.Vec(h.g);
-    w.Vec(h.g_previous);
-    w.Pod(h.time_previous);
-    w.Pod(h.time_last);
-    w.Mat(source_.load);
-    w.Mat(source_.traction);
-  }
+  const typename LeakyDielectricSolver<D>::WarmStart& h = solver_->warm_start();
+  w.Vec(h.g);
+  w.Vec(h.g_previous);
+  w.Pod(h.time_previous);
+  w.Pod(h.time_last);
+  w.Mat(source_.load);
+  if constexpr (D == 3) w.Mat(source_.traction);  // 2D: the load itself
   w.Mat(positions_at_last_solve_);
   w.Pod(last_solve_step_);
   w.Pod(solved_field_);
@@ -227,24 +213,17 @@ void ElectricStage<D>::Save(CheckpointWriter& w) const {
 template <int D>
 void ElectricStage<D>::Restore(CheckpointReader& r) {
   solver_->SetAppliedField(r.Pod<double>());
-  if constexpr (D == 2) {
-    solver_->set_jump_normal_derivative(r.Vec());
-    LeakyDielectricSolver::WarmStartHistory h;
-    h.g_previous = r.Vec();
-    h.time_previous = r.Pod<double>();
-    h.time_last = r.Pod<double>();
-    solver_->set_warm_start_history(h);
-    source_.load = r.Mat<2>();
-    source_.traction = source_.load;
-  } else {
-    LeakyDielectricSolver3D::WarmStart h;
-    h.g = r.Vec();
-    h.g_previous = r.Vec();
-    h.time_previous = r.Pod<double>();
-    h.time_last = r.Pod<double>();
-    solver_->set_warm_start(h);
-    source_.load = r.Mat<3>();
+  typename LeakyDielectricSolver<D>::WarmStart h;
+  h.g = r.Vec();
+  h.g_previous = r.Vec();
+  h.time_previous = r.Pod<double>();
+  h.time_last = r.Pod<double>();
+  solver_->set_warm_start(h);
+  source_.load = r.Mat<D>();
+  if constexpr (D == 3) {
     source_.traction = r.Mat<3>();
+  } else {
+    source_.traction = source_.load;
   }
   positions_at_last_solve_ = r.Mat<D>();
   last_solve_step_ = r.Pod<long>();

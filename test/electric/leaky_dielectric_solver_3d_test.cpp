@@ -1,17 +1,16 @@
-// 3D leaky-dielectric solver (electric/leaky_dielectric_solver_3d.h): a sphere of radius 0.3 in
+// 3D leaky-dielectric solver (electric/leaky_dielectric_solver.h, D = 3): a sphere of radius 0.3 in
 // the box [-1, 1]^3 (phi = E z on the z faces, Neumann x and y faces) against the free-space
 // solution of a leaky-dielectric sphere in a uniform field (song2019 ch. 6's case A ratios
 // sigma^-/sigma^+ = 1.75, eps^-/eps^+ = 3.5): the Maxwell traction at the vertices within 5 % of
 // the largest (the box's image dipoles are about (R/L)^3 = 3 %), the net force zero by symmetry,
 // the force per vertex the traction times the vertex area, the field scaling (traction ~ E^2,
 // warm start from the rescaled G).
-#include "ehd_capsule/electric/leaky_dielectric_solver_3d.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
+#include "ehd_capsule/electric/leaky_dielectric_solver.h"
 #include "ehd_capsule/reference/interface_examples_3d.h"
 
 namespace ehd {
@@ -21,7 +20,7 @@ TEST(LeakyDielectricSolver3D, SphereInAUniformFieldMatchesTheFreeSpaceTraction) 
   const int n = 48;
   const Grid3D grid{n, n, n, 2.0 / n, -1, -1, -1};
   const double sm = 1.75, sp = 1.0, em = 3.5, ep = 1.0, radius = 0.3, e = 1.0;
-  LeakyDielectricSolver3D solver(grid, sm, sp, em, ep);
+  LeakyDielectricSolver<3> solver(grid, sm, sp, em, ep);
   solver.SetAppliedField(e);  // phi = E z on the z faces: E_inf = (0, 0, -E)
   const TriangleMesh mesh = IcosphereMesh(4, radius);
   const InterfaceSolveReport report = solver.Solve(mesh, 0.0);
@@ -62,8 +61,8 @@ TEST(LeakyDielectricSolver3D, SphereInAUniformFieldMatchesTheFreeSpaceTraction) 
 
 TEST(LeakyDielectricSolver3D, RejectsNonPositiveProperties) {
   const Grid3D grid{16, 16, 16, 0.125, -1, -1, -1};
-  EXPECT_THROW(LeakyDielectricSolver3D(grid, 0.0, 1, 1, 1), std::invalid_argument);
-  EXPECT_THROW(LeakyDielectricSolver3D(grid, 1, 1, 1, -2), std::invalid_argument);
+  EXPECT_THROW(LeakyDielectricSolver<3>(grid, 0.0, 1, 1, 1), std::invalid_argument);
+  EXPECT_THROW(LeakyDielectricSolver<3>(grid, 1, 1, 1, -2), std::invalid_argument);
 }
 
 }  // namespace

@@ -44,24 +44,27 @@ const Grid2D kGrid{128, 128, 1.0, -64, -64};
 // The starting guess a solver would use at time t2 after converged solves at t0 and t1: a third
 // solve with a GMRES tolerance so loose that it stops at 0 iterations returns the guess itself.
 std::vector<double> StartingGuess(double dt, bool timed) {
-  GmresOptions tight;
-  tight.tolerance = 1e-12;
-  LeakyDielectricSolver solver(kGrid, 3.0, 1.0, 2.0, 1.0, tight);
-  solver.SetAppliedField(0.01);
+  FastIimOptions tight;
+  tight.gmres.tolerance = 1e-12;
+  LeakyDielectricSolver<2> converged(kGrid, 3.0, 1.0, 2.0, 1.0, tight);
+  converged.SetAppliedField(0.01);
   for (int s = 0; s < 2; ++s) {
     if (timed) {
-      solver.Solve(DropAt(5.0 + s * dt), s);
+      converged.Solve(DropAt(5.0 + s * dt), s);
     } else {
-      solver.Solve(DropAt(5.0 + s * dt));
+      converged.Solve(DropAt(5.0 + s * dt));
     }
   }
+  // The same state in a solver whose GMRES stops at once (the checkpoint's warm-start state).
   FastIimOptions loose;
   loose.gmres.tolerance = 0.9;
-  solver.SetIimOptions(loose);
+  LeakyDielectricSolver<2> solver(kGrid, 3.0, 1.0, 2.0, 1.0, loose);
+  solver.SetAppliedField(0.01);
+  solver.set_warm_start(converged.warm_start());
   const InterfaceSolveReport r =
       timed ? solver.Solve(DropAt(5.0 + 2 * dt), 2.0) : solver.Solve(DropAt(5.0 + 2 * dt));
   EXPECT_EQ(r.iterations, 0);
-  return solver.jump_normal_derivative();
+  return solver.warm_start().g;
 }
 
 TEST(LeakyDielectricWarmStart, ExtrapolatedGuessIsSecondOrderInTheTimeStep) {
@@ -70,15 +73,15 @@ TEST(LeakyDielectricWarmStart, ExtrapolatedGuessIsSecondOrderInTheTimeStep) {
   // ~2x and the second ~4x, and at dt = 1/60 (markers ~0.01 h per solve) the extrapolated guess
   // must be far closer (< 1/5) than the plain one. The guesses are the solver's own (read back
   // from a 0-iteration solve); the reference is G(t2) converged to 1e-12.
-  GmresOptions tight;
-  tight.tolerance = 1e-12;
+  FastIimOptions tight;
+  tight.gmres.tolerance = 1e-12;
   double plain_error[2], extrapolated_error[2];
   int level = 0;
   for (double dt : {1.0 / 30, 1.0 / 60}) {
-    LeakyDielectricSolver reference(kGrid, 3.0, 1.0, 2.0, 1.0, tight);
+    LeakyDielectricSolver<2> reference(kGrid, 3.0, 1.0, 2.0, 1.0, tight);
     reference.SetAppliedField(0.01);
     reference.Solve(DropAt(5.0 + 2 * dt));
-    const std::vector<double>& g2 = reference.jump_normal_derivative();
+    const std::vector<double>& g2 = reference.warm_start().g;
     plain_error[level] = MaxAbsDifference(StartingGuess(dt, false), g2);
     extrapolated_error[level] = MaxAbsDifference(StartingGuess(dt, true), g2);
     ++level;
@@ -97,19 +100,19 @@ TEST(LeakyDielectricWarmStart, TimedSolvesNeedFewerIterationsAndAgreeWithColdSol
   // every result agrees with a cold solve to the GMRES tolerance (1e-7 relative to |b|, i.e.
   // differences ~1e-6 of max |G|).
   const double dt = 1.0 / 60;
-  LeakyDielectricSolver timed(kGrid, 3.0, 1.0, 2.0, 1.0);
-  LeakyDielectricSolver untimed(kGrid, 3.0, 1.0, 2.0, 1.0);
-  LeakyDielectricSolver cold(kGrid, 3.0, 1.0, 2.0, 1.0);
-  for (LeakyDielectricSolver* s : {&timed, &untimed, &cold}) s->SetAppliedField(0.01);
+  LeakyDielectricSolver<2> timed(kGrid, 3.0, 1.0, 2.0, 1.0);
+  LeakyDielectricSolver<2> untimed(kGrid, 3.0, 1.0, 2.0, 1.0);
+  LeakyDielectricSolver<2> cold(kGrid, 3.0, 1.0, 2.0, 1.0);
+  for (LeakyDielectricSolver<2>* s : {&timed, &untimed, &cold}) s->SetAppliedField(0.01);
   int timed_iterations = 0, untimed_iterations = 0, cold_iterations = 0;
   for (int s = 0; s < 8; ++s) {
     const ClosedCurve c = DropAt(5.0 + s * dt);
     const int it_timed = timed.Solve(c, s).iterations;
     const int it_untimed = untimed.Solve(c).iterations;
-    cold.set_jump_normal_derivative({});
+    cold.set_warm_start({});
     const int it_cold = cold.Solve(c).iterations;
-    EXPECT_LT(MaxAbsDifference(timed.jump_normal_derivative(), cold.jump_normal_derivative()),
-              1e-5 * MaxAbs(cold.jump_normal_derivative()))
+    EXPECT_LT(MaxAbsDifference(timed.warm_start().g, cold.warm_start().g),
+              1e-5 * MaxAbs(cold.warm_start().g))
         << "solve " << s;
     if (s >= 2) {
       EXPECT_LE(it_timed, 2) << "solve " << s;
@@ -125,36 +128,39 @@ TEST(LeakyDielectricWarmStart, TimedSolvesNeedFewerIterationsAndAgreeWithColdSol
 TEST(LeakyDielectricWarmStart, NewFieldStrengthRescalesTheStartingGuess) {
   // G is linear in E (f = w = v = 0, box data E y): on the same curve, doubling E makes the
   // rescaled previous G the solution, so GMRES stops at once, where a cold start needs >= 3.
-  LeakyDielectricSolver solver(kGrid, 3.0, 1.0, 2.0, 1.0);
+  LeakyDielectricSolver<2> solver(kGrid, 3.0, 1.0, 2.0, 1.0);
   const ClosedCurve c = DropAt(1.0);
   solver.SetAppliedField(0.01);
   solver.Solve(c, 0.0);
-  const std::vector<double> g_half = solver.jump_normal_derivative();
+  const std::vector<double> g_half = solver.warm_start().g;
   solver.SetAppliedField(0.02);
   const InterfaceSolveReport warm = solver.Solve(c, 1.0);
   EXPECT_EQ(warm.iterations, 0);
   EXPECT_TRUE(warm.converged);
   for (int k = 0; k < kMarkers; ++k) {
-    EXPECT_NEAR(solver.jump_normal_derivative()[k], 2 * g_half[k], 1e-6 * MaxAbs(g_half));
+    EXPECT_NEAR(solver.warm_start().g[k], 2 * g_half[k], 1e-6 * MaxAbs(g_half));
   }
-  solver.set_jump_normal_derivative({});
+  solver.set_warm_start({});
   EXPECT_GE(solver.Solve(c).iterations, 3);
 }
 
-TEST(LeakyDielectricWarmStart, HistoryRoundTripsAndIsForgottenWhenGIsSet) {
-  LeakyDielectricSolver solver(kGrid, 3.0, 1.0, 2.0, 1.0);
+TEST(LeakyDielectricWarmStart, HistoryRoundTripsAndIsForgottenByAnUntimedSolve) {
+  LeakyDielectricSolver<2> solver(kGrid, 3.0, 1.0, 2.0, 1.0);
   solver.SetAppliedField(0.01);
   solver.Solve(DropAt(0.0), 10.0);
   solver.Solve(DropAt(0.02), 12.0);
-  const LeakyDielectricSolver::WarmStartHistory h = solver.warm_start_history();
+  const LeakyDielectricSolver<2>::WarmStart h = solver.warm_start();
   EXPECT_EQ(h.time_previous, 10.0);
   EXPECT_EQ(h.time_last, 12.0);
   EXPECT_EQ(h.g_previous.size(), static_cast<std::size_t>(kMarkers));
-  solver.set_jump_normal_derivative(solver.jump_normal_derivative());
-  EXPECT_TRUE(solver.warm_start_history().g_previous.empty());
-  EXPECT_TRUE(std::isnan(solver.warm_start_history().time_last));
-  solver.set_warm_start_history(h);
-  EXPECT_EQ(solver.warm_start_history().time_last, 12.0);
+  EXPECT_EQ(h.g.size(), static_cast<std::size_t>(kMarkers));
+  solver.Solve(DropAt(0.04));  // untimed: forgets the history, keeps G1
+  EXPECT_TRUE(solver.warm_start().g_previous.empty());
+  EXPECT_TRUE(std::isnan(solver.warm_start().time_last));
+  EXPECT_EQ(solver.warm_start().g.size(), static_cast<std::size_t>(kMarkers));
+  solver.set_warm_start(h);
+  EXPECT_EQ(solver.warm_start().time_last, 12.0);
+  EXPECT_EQ(solver.warm_start().g, h.g);
 }
 
 }  // namespace

@@ -7,22 +7,22 @@
 
 namespace ehd {
 
+template <int D>
 class LeakyDielectricSolver;
-class LeakyDielectricSolver3D;
 
 template <int D>
 struct DimensionTraits;
 
 template <>
 struct DimensionTraits<2> {
-  using Fluid = LatticeBoltzmann2D;        // D2Q9 MRT
-  using Electric = LeakyDielectricSolver;  // 2D fast IIM
+  using Fluid = LatticeBoltzmann2D;           // D2Q9 MRT
+  using Electric = LeakyDielectricSolver<2>;  // 2D fast IIM
 };
 
 template <>
 struct DimensionTraits<3> {
-  using Fluid = LatticeBoltzmann3D;          // D3Q19 MRT
-  using Electric = LeakyDielectricSolver3D;  // 3D fast IIM
+  using Fluid = LatticeBoltzmann3D;           // D3Q19 MRT
+  using Electric = LeakyDielectricSolver<3>;  // 3D fast IIM
 };
 
 template <int D>

@@ -1,12 +1,21 @@
-// Electric potential, field and interfacial force of a leaky dielectric drop/capsule in a DC
-// field (song2019 sec. 3.5 and 4.2): div(sigma grad phi) = 0 with sigma^- inside, sigma^+
-// outside, [phi] = 0, [sigma phi_n] = 0 (no surface charge relaxation term: the quasi-static
-// leaky dielectric model), solved by the fast IIM (fast_iim_solver.h). Box sides: phi = E y on
-// y = y0 and y = y_max (Dirichlet; E_inf = (0, -E)), dphi/dx = 0 on the x sides (Neumann).
-// The force is F_E = [M_E] . n per unit length at each marker (electric_field.h) with eps^+-.
-// G = [phi_n] of the previous Solve warm-starts GMRES when the marker count is unchanged; a
-// time-stepping caller that passes the time of each solve gets the linear extrapolation of the
-// last two solutions instead (Solve(curve, time)), and a new field strength rescales them.
+// The leaky-dielectric layer, one for both dimensions (song2019 sec. 3.5 and 4.2; ch. 6 in 3D):
+// the potential of a drop or capsule in a DC field, div(sigma grad phi) = 0 with sigma^- inside
+// and sigma^+ outside, [phi] = 0, [sigma phi_n] = 0 (the quasi-static leaky-dielectric model, no
+// charge relaxation term), solved by the fast IIM of the dimension (2D: fast_iim_solver.h on the
+// markers of a closed curve; 3D: fast_iim_solver_3d.h on the vertices of a closed triangle mesh),
+// and the Maxwell-stress traction [M_E] . n with eps^+-.
+//
+// Box sides (ElectricInterfaceOf<D>): E_inf = -E e_D along the last axis, phi = E y (2D) or
+// phi = E z (3D) on the two faces across it (Dirichlet), zero normal derivative on the others
+// (song2019 ch. 4 and ch. 6).
+// Force: 2D, per unit length at each marker (= the traction, electric_field.h MaxwellForce);
+// 3D, per vertex, the traction per unit area times the vertex's mixed Voronoi area
+// (triangle_mesh.h), so that it spreads like the membrane's vertex forces.
+//
+// Warm start, the same in both dimensions: G = [phi_n] of the previous solve is the next guess
+// (when the point count is unchanged); a caller that passes the time of each solve gets the
+// linear extrapolation of the last two solutions instead (Solve(shape, time)), and a new field
+// strength rescales them (G is linear in E: f = w = v = 0 and the box data scale with E).
 #pragma once
 
 #include <Eigen/Core>
@@ -14,78 +23,101 @@
 #include <vector>
 
 #include "ehd_capsule/electric/fast_iim_solver.h"
+#include "ehd_capsule/electric/fast_iim_solver_3d.h"
 #include "ehd_capsule/electric/interface_problem.h"
 #include "ehd_capsule/geometry/closed_curve.h"
 #include "ehd_capsule/geometry/grid.h"
+#include "ehd_capsule/geometry/triangle_mesh.h"
 
 namespace ehd {
 
+// The interface solver of each dimension and the types it takes.
+template <int D>
+struct ElectricInterfaceOf;
+
+template <>
+struct ElectricInterfaceOf<2> {
+  using Shape = ClosedCurve;  // markers
+  using Solver = FastIimSolver;
+  using Options = FastIimOptions;
+  using Problem = InterfaceProblem;
+};
+
+template <>
+struct ElectricInterfaceOf<3> {
+  using Shape = TriangleMesh;  // vertices
+  using Solver = FastIimSolver3D;
+  using Options = FastIim3DOptions;
+  using Problem = InterfaceProblem3D;
+};
+
+template <int D>
 class LeakyDielectricSolver {
  public:
-  // sigma and eps must be > 0 (std::invalid_argument otherwise).
-  LeakyDielectricSolver(const Grid2D& grid, double sigma_minus, double sigma_plus, double eps_minus,
-                        double eps_plus, const GmresOptions& gmres = GmresOptions());
+  using Shape = typename ElectricInterfaceOf<D>::Shape;
+  using Solver = typename ElectricInterfaceOf<D>::Solver;
+  using Options = typename ElectricInterfaceOf<D>::Options;
+  using Points = Eigen::Matrix<double, D, Eigen::Dynamic>;
 
-  // E_inf = (0, -E): phi = E y on the y sides. G is linear in E (f = w = v = 0 and the box data
-  // scale with E), so a change from E_old != 0 to E != 0 rescales the stored G (and G0) by E/E_old:
-  // a step in Ca_E keeps its warm start.
+  // sigma and eps must be > 0 (std::invalid_argument otherwise).
+  LeakyDielectricSolver(const Grid<D>& grid, double sigma_minus, double sigma_plus,
+                        double eps_minus, double eps_plus, const Options& options = Options());
+
+  // E_inf = -e along the last axis. A change from e_old != 0 to e != 0 rescales the stored
+  // solutions by e / e_old: a step in Ca_E keeps its warm start.
   void SetAppliedField(double e);
   double applied_field() const { return applied_field_; }
 
-  // Solves for the curve, GMRES starting from the last G; throws SolverError if GMRES does not
-  // converge. Forgets the time history used by Solve(curve, time).
-  const InterfaceSolveReport& Solve(const ClosedCurve& curve);
-  // The same for a solve at `time` (any monotone clock, e.g. the step number). When the two
-  // previous solves were timed too (t0 < t1 < time, same marker count), GMRES starts from
+  // Solves for the shape at `time` (any monotone clock, e.g. the step number). When the two
+  // previous solves were timed too (t0 < t1 < time, same point count), GMRES starts from
   //   G_guess = G1 + r (G1 - G0),   r = min((time - t1) / (t1 - t0), kMaxExtrapolationRatio),
-  // which is O(dt^2) from the new solution where G1 alone is O(dt): with markers moving ~0.01 h
+  // which is O(dt^2) from the new solution where G1 alone is O(dt): with points moving ~0.01 h
   // per solve it leaves GMRES 0-1 iterations instead of 2 (bench/electric_warm_start_bench).
-  const InterfaceSolveReport& Solve(const ClosedCurve& curve, double time);
+  // Throws SolverError when the interface solver refuses or GMRES does not converge.
+  const InterfaceSolveReport& Solve(const Shape& shape, double time);
+  // The same from G1 alone (forgets the time history).
+  const InterfaceSolveReport& Solve(const Shape& shape);
   static constexpr double kMaxExtrapolationRatio = 2.0;
   const InterfaceSolveReport& report() const { return report_; }
 
-  const Eigen::Matrix2Xd& force() const { return force_; }  // per unit length, per marker
+  const Points& force() const { return force_; }        // 2D: per unit length; 3D: per vertex
+  const Points& traction() const { return traction_; }  // [M_E].n per unit length / area
   const std::vector<double>& potential() const { return phi_; }
-  const std::vector<double>& field_x() const { return ex_; }
-  const std::vector<double>& field_y() const { return ey_; }
-  // Normal field inside/outside and tangential field at the markers (E = -grad phi).
+  // Normal field E_n = -phi_n inside and outside at the points.
   const std::vector<double>& normal_field_minus() const { return en_minus_; }
   const std::vector<double>& normal_field_plus() const { return en_plus_; }
-  const std::vector<double>& tangential_field() const { return et_; }
-  // Free surface charge [eps E_n] at the markers.
+  // Free surface charge [eps E_n] at the points.
   std::vector<double> SurfaceCharge() const;
+  // E = -grad phi on the grid for the last solve (component a in [a]), computed on demand.
+  std::vector<std::vector<double>> GridField() const;
 
-  // G = [phi_n] of the last solve (the next warm start). Setting it forgets the time history.
-  const std::vector<double>& jump_normal_derivative() const { return g_; }
-  void set_jump_normal_derivative(const std::vector<double>& g);
-
-  // What Solve(curve, time) extrapolates from besides G1 = jump_normal_derivative(): G0 and the
-  // times t0, t1 (NaN: none). Exposed so that a checkpoint restarts bit for bit.
-  struct WarmStartHistory {
-    std::vector<double> g_previous;
+  // The warm start: G1 (the last solution), G0 and the times t0, t1 of the last two timed solves
+  // (NaN: none). Exposed so that a checkpoint restarts bit for bit.
+  struct WarmStart {
+    std::vector<double> g, g_previous;
     double time_previous = std::numeric_limits<double>::quiet_NaN();
     double time_last = std::numeric_limits<double>::quiet_NaN();
   };
-  const WarmStartHistory& warm_start_history() const { return history_; }
-  void set_warm_start_history(const WarmStartHistory& history) { history_ = history; }
+  const WarmStart& warm_start() const { return warm_; }
+  void set_warm_start(const WarmStart& w) { warm_ = w; }
 
-  // Fast IIM options (fit radius, control spacing, warm-start mode; see fast_iim_solver.h).
-  void SetIimOptions(const FastIimOptions& options) { iim_.set_options(options); }
-
-  const Grid2D& grid() const { return iim_.grid(); }
-  const FastIimSolver& iim() const { return iim_; }
+  const Solver& iim() const { return iim_; }
+  const Grid<D>& grid() const { return iim_.grid(); }
 
  private:
-  const InterfaceSolveReport& SolveFromGuess(const ClosedCurve& curve);
+  const InterfaceSolveReport& SolveFromGuess(const Shape& shape);
 
-  FastIimSolver iim_;
+  Solver iim_;
   double eps_minus_, eps_plus_;
   double applied_field_ = 0.0;
-  InterfaceProblem problem_;
+  typename ElectricInterfaceOf<D>::Problem problem_;
   InterfaceSolveReport report_;
-  WarmStartHistory history_;
-  std::vector<double> g_, phi_, ex_, ey_, en_minus_, en_plus_, et_, et_plus_;
-  Eigen::Matrix2Xd force_;
+  WarmStart warm_;
+  std::vector<double> phi_, en_minus_, en_plus_;
+  Points traction_, force_;
 };
+
+extern template class LeakyDielectricSolver<2>;
+extern template class LeakyDielectricSolver<3>;
 
 }  // namespace ehd
