@@ -11,19 +11,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "diagonalised_laplacian.h"
 #include "poisson_axis.h"
 
 namespace ehd {
 
 using poisson_detail::AxisTransform;
 using poisson_detail::MakeAxis;
-using poisson_detail::PlannerMutex;
-
-struct FastPoissonSolver::Plans {
-  double* buffer = nullptr;
-  fftw_plan forward = nullptr;
-  fftw_plan inverse = nullptr;
-};
 
 bool IsSingular(const PoissonBoundaries& bc) {
   return bc.x_min != BoundaryKind::kDirichlet && bc.x_max != BoundaryKind::kDirichlet &&
@@ -31,7 +25,7 @@ bool IsSingular(const PoissonBoundaries& bc) {
 }
 
 FastPoissonSolver::FastPoissonSolver(const Grid2D& grid, const PoissonBoundaries& bc)
-    : grid_(grid), bc_(bc), plans_(std::make_unique<Plans>()) {
+    : grid_(grid), bc_(bc) {
   if (grid.nx < 1 || grid.ny < 1) {
     throw std::invalid_argument("FastPoissonSolver: grid must have nx, ny >= 1, got " +
                                 std::to_string(grid.nx) + " x " + std::to_string(grid.ny));
@@ -42,38 +36,13 @@ FastPoissonSolver::FastPoissonSolver(const Grid2D& grid, const PoissonBoundaries
   }
   const AxisTransform ax = MakeAxis(bc.x_min, bc.x_max, grid.nx, "x");
   const AxisTransform ay = MakeAxis(bc.y_min, bc.y_max, grid.ny, "y");
-  const int nx = grid.nx, ny = grid.ny;
-  const double h2 = grid.h * grid.h;
-  const double scale = 1.0 / (ax.normalisation * ay.normalisation);
-  inverse_eigenvalues_.assign(grid.size(), 0.0);
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const double lambda = (ax.eigenvalues[i] + ay.eigenvalues[j]) / h2;
-      // The only zero eigenvalue is the constant mode of the singular (no Dirichlet) case.
-      inverse_eigenvalues_[grid.index(i, j)] =
-          (std::abs(lambda) > 1e-12 / h2) ? scale / lambda : 0.0;
-    }
-  }
-  std::lock_guard<std::mutex> lock(PlannerMutex());
-  poisson_detail::ImportWisdom();
-  plans_->buffer = fftw_alloc_real(grid.size());
   // Row-major [ny][nx]: the first FFTW dimension is y, matching index = j * nx + i.
-  plans_->forward = fftw_plan_r2r_2d(ny, nx, plans_->buffer, plans_->buffer, ay.forward, ax.forward,
-                                     FFTW_MEASURE);
-  plans_->inverse = fftw_plan_r2r_2d(ny, nx, plans_->buffer, plans_->buffer, ay.inverse, ax.inverse,
-                                     FFTW_MEASURE);
-  if (!plans_->forward || !plans_->inverse) {
-    throw std::runtime_error("FastPoissonSolver: FFTW could not make a plan");
-  }
-  poisson_detail::ExportWisdom();
+  laplacian_ = std::make_unique<poisson_detail::DiagonalisedLaplacian>(
+      std::vector<const AxisTransform*>{&ay, &ax}, std::vector<int>{grid.ny, grid.nx}, grid.h,
+      "FastPoissonSolver");
 }
 
-FastPoissonSolver::~FastPoissonSolver() {
-  std::lock_guard<std::mutex> lock(PlannerMutex());
-  if (plans_->forward) fftw_destroy_plan(plans_->forward);
-  if (plans_->inverse) fftw_destroy_plan(plans_->inverse);
-  if (plans_->buffer) fftw_free(plans_->buffer);
-}
+FastPoissonSolver::~FastPoissonSolver() = default;
 
 void FastPoissonSolver::Solve(const std::vector<double>& rhs, std::vector<double>& solution) {
   const std::size_t n = grid_.size();
@@ -81,14 +50,7 @@ void FastPoissonSolver::Solve(const std::vector<double>& rhs, std::vector<double
     throw std::invalid_argument("FastPoissonSolver::Solve: rhs has " + std::to_string(rhs.size()) +
                                 " entries, grid has " + std::to_string(n));
   }
-  double* __restrict buf = plans_->buffer;
-  std::memcpy(buf, rhs.data(), n * sizeof(double));
-  fftw_execute(plans_->forward);
-  const double* __restrict inv = inverse_eigenvalues_.data();
-  for (std::size_t k = 0; k < n; ++k) buf[k] *= inv[k];
-  fftw_execute(plans_->inverse);
-  solution.resize(n);
-  std::memcpy(solution.data(), buf, n * sizeof(double));
+  laplacian_->Solve(rhs, solution);
 }
 
 void AddBoundaryDataToRhs(const Grid2D& grid, const PoissonBoundaries& bc,

@@ -9,19 +9,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "diagonalised_laplacian.h"
 #include "poisson_axis.h"
 
 namespace ehd {
 
 using poisson_detail::AxisTransform;
 using poisson_detail::MakeAxis;
-using poisson_detail::PlannerMutex;
-
-struct FastPoissonSolver3D::Plans {
-  double* buffer = nullptr;
-  fftw_plan forward = nullptr;
-  fftw_plan inverse = nullptr;
-};
 
 bool IsSingular(const PoissonBoundaries3D& bc) {
   for (BoundaryKind k : {bc.x_min, bc.x_max, bc.y_min, bc.y_max, bc.z_min, bc.z_max}) {
@@ -31,7 +25,7 @@ bool IsSingular(const PoissonBoundaries3D& bc) {
 }
 
 FastPoissonSolver3D::FastPoissonSolver3D(const Grid3D& grid, const PoissonBoundaries3D& bc)
-    : grid_(grid), bc_(bc), plans_(std::make_unique<Plans>()) {
+    : grid_(grid), bc_(bc) {
   if (grid.nx < 1 || grid.ny < 1 || grid.nz < 1) {
     throw std::invalid_argument("FastPoissonSolver3D: grid must have nx, ny, nz >= 1");
   }
@@ -39,38 +33,13 @@ FastPoissonSolver3D::FastPoissonSolver3D(const Grid3D& grid, const PoissonBounda
   const AxisTransform ax = MakeAxis(bc.x_min, bc.x_max, grid.nx, "x");
   const AxisTransform ay = MakeAxis(bc.y_min, bc.y_max, grid.ny, "y");
   const AxisTransform az = MakeAxis(bc.z_min, bc.z_max, grid.nz, "z");
-  const double h2 = grid.h * grid.h;
-  const double scale = 1.0 / (ax.normalisation * ay.normalisation * az.normalisation);
-  inverse_eigenvalues_.assign(grid.size(), 0.0);
-  for (int k = 0; k < grid.nz; ++k) {
-    for (int j = 0; j < grid.ny; ++j) {
-      for (int i = 0; i < grid.nx; ++i) {
-        const double lambda = (ax.eigenvalues[i] + ay.eigenvalues[j] + az.eigenvalues[k]) / h2;
-        inverse_eigenvalues_[grid.index(i, j, k)] =
-            (std::abs(lambda) > 1e-12 / h2) ? scale / lambda : 0.0;
-      }
-    }
-  }
-  std::lock_guard<std::mutex> lock(PlannerMutex());
-  poisson_detail::ImportWisdom();
-  plans_->buffer = fftw_alloc_real(grid.size());
   // Row-major [nz][ny][nx]: the first FFTW dimension is z (index = (k ny + j) nx + i).
-  plans_->forward = fftw_plan_r2r_3d(grid.nz, grid.ny, grid.nx, plans_->buffer, plans_->buffer,
-                                     az.forward, ay.forward, ax.forward, FFTW_MEASURE);
-  plans_->inverse = fftw_plan_r2r_3d(grid.nz, grid.ny, grid.nx, plans_->buffer, plans_->buffer,
-                                     az.inverse, ay.inverse, ax.inverse, FFTW_MEASURE);
-  if (!plans_->forward || !plans_->inverse) {
-    throw std::runtime_error("FastPoissonSolver3D: FFTW could not make a plan");
-  }
-  poisson_detail::ExportWisdom();
+  laplacian_ = std::make_unique<poisson_detail::DiagonalisedLaplacian>(
+      std::vector<const AxisTransform*>{&az, &ay, &ax}, std::vector<int>{grid.nz, grid.ny, grid.nx},
+      grid.h, "FastPoissonSolver3D");
 }
 
-FastPoissonSolver3D::~FastPoissonSolver3D() {
-  std::lock_guard<std::mutex> lock(PlannerMutex());
-  if (plans_->forward) fftw_destroy_plan(plans_->forward);
-  if (plans_->inverse) fftw_destroy_plan(plans_->inverse);
-  if (plans_->buffer) fftw_free(plans_->buffer);
-}
+FastPoissonSolver3D::~FastPoissonSolver3D() = default;
 
 void FastPoissonSolver3D::Solve(const std::vector<double>& rhs, std::vector<double>& solution) {
   const std::size_t n = grid_.size();
@@ -79,14 +48,7 @@ void FastPoissonSolver3D::Solve(const std::vector<double>& rhs, std::vector<doub
                                 std::to_string(rhs.size()) + " entries, grid has " +
                                 std::to_string(n));
   }
-  double* __restrict buf = plans_->buffer;
-  std::memcpy(buf, rhs.data(), n * sizeof(double));
-  fftw_execute(plans_->forward);
-  const double* __restrict inv = inverse_eigenvalues_.data();
-  for (std::size_t k = 0; k < n; ++k) buf[k] *= inv[k];
-  fftw_execute(plans_->inverse);
-  solution.resize(n);
-  std::memcpy(solution.data(), buf, n * sizeof(double));
+  laplacian_->Solve(rhs, solution);
 }
 
 namespace {

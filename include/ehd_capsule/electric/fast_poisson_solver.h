@@ -35,6 +35,9 @@
 #include "ehd_capsule/geometry/grid.h"
 
 namespace ehd {
+namespace poisson_detail {
+class DiagonalisedLaplacian;
+}
 
 enum class BoundaryKind { kDirichlet, kNeumann, kPeriodic };
 
@@ -116,11 +119,9 @@ class FastPoissonSolver {
   const PoissonBoundaries& boundaries() const { return bc_; }
 
  private:
-  struct Plans;
   Grid2D grid_;
   PoissonBoundaries bc_;
-  std::unique_ptr<Plans> plans_;
-  std::vector<double> inverse_eigenvalues_;  // 1 / (lambda_x + lambda_y) / normalisation
+  std::unique_ptr<poisson_detail::DiagonalisedLaplacian> laplacian_;  // shared by 2D and 3D
 };
 
 }  // namespace ehd

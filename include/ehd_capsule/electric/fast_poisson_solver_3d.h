@@ -64,11 +64,9 @@ class FastPoissonSolver3D {
   const PoissonBoundaries3D& boundaries() const { return bc_; }
 
  private:
-  struct Plans;
   Grid3D grid_;
   PoissonBoundaries3D bc_;
-  std::unique_ptr<Plans> plans_;
-  std::vector<double> inverse_eigenvalues_;
+  std::unique_ptr<poisson_detail::DiagonalisedLaplacian> laplacian_;  // shared by 2D and 3D
 };
 
 }  // namespace ehd
