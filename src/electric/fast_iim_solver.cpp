@@ -217,34 +217,9 @@ void FastIimSolver::ComputeInteriorFlux(const ClosedCurve& curve, const Periodic
   interior_flux_ = h * h * sum + h * h / 24.0 * boundary;
 }
 
-InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const InterfaceProblem& problem,
-                                          std::vector<double>& g, std::vector<double>& phi) {
-  const auto start = std::chrono::steady_clock::now();
+void FastIimSolver::SetUpBand(const ClosedCurve& curve, const InterfaceProblem& problem) {
   const Grid2D& grid = poisson_.grid();
   const int m = curve.size();
-  if (!(problem.sigma_minus > 0.0) || !(problem.sigma_plus > 0.0)) {
-    throw std::invalid_argument("FastIimSolver: sigma_minus and sigma_plus must be > 0, got " +
-                                std::to_string(problem.sigma_minus) + " and " +
-                                std::to_string(problem.sigma_plus));
-  }
-  if (!problem.f.empty() && problem.f.size() != grid.size()) {
-    throw std::invalid_argument("FastIimSolver: problem.f has " + std::to_string(problem.f.size()) +
-                                " values, grid has " + std::to_string(grid.size()));
-  }
-  auto check_marker_size = [m](const std::vector<double>& x, const char* name) {
-    if (!x.empty() && static_cast<int>(x.size()) != m) {
-      throw std::invalid_argument(std::string("FastIimSolver: problem.") + name + " has " +
-                                  std::to_string(x.size()) + " values, curve has " +
-                                  std::to_string(m) + " markers");
-    }
-  };
-  check_marker_size(problem.w, "w");
-  check_marker_size(problem.v, "v");
-  poisson_solves_ = 0;
-  sigma_minus_ = problem.sigma_minus;
-  sigma_plus_ = problem.sigma_plus;
-  CheckResolution(curve);
-
   // Geometry: sides, band, crossing pairs, fit rows.
   const double h = grid.h;
   classes_.Update(grid, curve, options_.band_width_h * h);
@@ -348,6 +323,226 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
   }
   AddDirichletGhostCorrection(grid, poisson_.boundaries(), problem.boundary, rhs_base_);
   AddBoundaryDataToRhs(grid, poisson_.boundaries(), problem.boundary, rhs_base_);
+}
+
+void FastIimSolver::ChooseUnknowns(const ClosedCurve& curve) {
+  const int m = curve.size();
+  const double h = poisson_.grid().h;
+  // Control markers: every stride-th marker, stride from the mean spacing so that controls are
+  // >= min_control_spacing_h h apart on average; then, walking along the curve, a candidate
+  // closer than 3/4 of that to the previous control (or the last one to the first) is
+  // dropped. G at the other markers is the periodic spline through the control values. The
+  // walk matters where markers bunch (a deforming drop's tips gather them 0.24 h apart):
+  // controls closer than the grid resolves are near-null modes of the Schur system for
+  // sigma^- > sigma^+, and a drop in shear and field blew up on them.
+  // Only for sigma^- > sigma^+: for sigma^+ > sigma^- the Schur system has no near-null
+  // modes, every marker is a control, and the result does not depend on the marker order
+  // (thinning there cost up to 6x accuracy and made the answer depend on the direction of the
+  // markers).
+  const double min_spacing = sigma_minus_ > sigma_plus_ ? options_.min_control_spacing_h * h : 0.0;
+  const int stride =
+      std::max(1, static_cast<int>(std::ceil(min_spacing * m / curve.ArcLength() - 1e-9)));
+  control_.clear();
+  control_.push_back(0);
+  double since_last = 0.0;
+  for (int k = 1; k < m; ++k) {
+    since_last += curve.SegmentArcLength(k - 1);
+    if (k % stride == 0 && since_last >= 0.75 * min_spacing) {
+      control_.push_back(k);
+      since_last = 0.0;
+    }
+  }
+  if (min_spacing > 0.0 && control_.size() > 1 &&
+      since_last + curve.SegmentArcLength(m - 1) < 0.75 * min_spacing) {
+    control_.pop_back();
+  }
+  // Fourier basis in arc length (FastIimOptions::control_basis): G(s) = c_0 + sum_j
+  // (a_j cos(2 pi j s / P) + b_j sin(2 pi j s / P)), j <= K, with as many unknowns as the
+  // controls above would have; the residual is projected on the same basis with the arc
+  // weights (Galerkin). The span does not depend on which marker is first nor on the marker
+  // direction (s -> s + c rotates each cos/sin pair, s -> P - s flips the sines).
+  const bool by_wavelength = sigma_minus_ >= options_.fourier_basis_min_ratio * sigma_plus_ &&
+                             options_.fourier_wavelength_h > 0.0;
+  fourier_ = options_.control_basis == ControlBasis::kFourier &&
+             (static_cast<int>(control_.size()) < m || by_wavelength);
+  unknowns_ = static_cast<int>(control_.size());
+  if (fourier_) {
+    const int k_max =
+        by_wavelength
+            ? std::max(2,
+                       std::min(static_cast<int>(perimeter_ / (options_.fourier_wavelength_h * h)),
+                                (m - 1) / 2))
+            : std::max(2, (unknowns_ - 1) / 2);
+    unknowns_ = 2 * k_max + 1;
+    basis_.resize(m, unknowns_);
+    double arc = 0.0;
+    const double period = perimeter_;
+    for (int k = 0; k < m; ++k) {
+      basis_(k, 0) = 1.0;
+      for (int j = 1; j <= k_max; ++j) {
+        const double angle = 2.0 * M_PI * j * arc / period;
+        basis_(k, 2 * j - 1) = std::cos(angle);
+        basis_(k, 2 * j) = std::sin(angle);
+      }
+      arc += curve.SegmentArcLength(k);
+    }
+    weighted_basis_ = basis_;
+    for (int k = 0; k < m; ++k) weighted_basis_.row(k) *= arc_weight_[k] / perimeter_;
+    gram_.compute(weighted_basis_.transpose() * basis_);
+  }
+  every_marker_ = !fourier_ && unknowns_ == m;
+  if (unknowns_ < 4) {
+    throw std::invalid_argument("FastIimSolver: only " + std::to_string(unknowns_) +
+                                " control markers (curve too small for the grid?)");
+  }
+  if (!fourier_) {
+    control_knots_.resize(unknowns_);
+    for (int c = 0; c < unknowns_; ++c) control_knots_[c] = curve.knot(control_[c]);
+  }
+}
+
+GmresResult FastIimSolver::SolveSchurSystem(const ClosedCurve& curve, std::vector<double>& g) {
+  const int m = curve.size();
+  g_full_.resize(m);
+  r_full_.resize(m);
+  const bool fourier = fourier_, every_marker = every_marker_;
+  const int mc = unknowns_;
+  auto expand = [&](const double* xc) {
+    if (every_marker) {
+      std::copy(xc, xc + m, g_full_.begin());
+      return;
+    }
+    if (fourier) {
+      Eigen::Map<Eigen::VectorXd>(g_full_.data(), m) =
+          basis_ * Eigen::Map<const Eigen::VectorXd>(xc, mc);
+      return;
+    }
+    scratch_.assign(xc, xc + mc);
+    control_spline_.Fit(control_knots_, curve.period(), scratch_);
+    for (int k = 0; k < m; ++k) g_full_[k] = control_spline_.Value(curve.knot(k));
+  };
+  auto restrict_to_unknowns = [&](const double* full, double* rc) {
+    if (fourier) {
+      Eigen::Map<Eigen::VectorXd>(rc, mc) =
+          weighted_basis_.transpose() * Eigen::Map<const Eigen::VectorXd>(full, m);
+    } else {
+      for (int c = 0; c < mc; ++c) rc[c] = full[control_[c]];
+    }
+  };
+  auto residual = [&](const double* xc, bool with_data, double* rc) {
+    expand(xc);
+    Residual(curve, g_full_.data(), with_data, r_full_.data());
+    restrict_to_unknowns(r_full_.data(), rc);
+  };
+  // The restriction of a residual that is 1 at every marker (the deflation's shift).
+  Eigen::VectorXd restricted_one(mc);
+  {
+    std::vector<double> ones(m, 1.0);
+    restrict_to_unknowns(ones.data(), restricted_one.data());
+  }
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(mc);
+  const bool has_guess = static_cast<int>(g.size()) == m;
+  if (has_guess) {
+    if (fourier) {
+      // Weighted least-squares coefficients of the guess.
+      x = gram_.solve(weighted_basis_.transpose() * Eigen::Map<const Eigen::VectorXd>(g.data(), m));
+    } else {
+      for (int c = 0; c < mc; ++c) x[c] = g[control_[c]];
+    }
+  }
+  // Mean deflation (FastIimOptions::deflate_mean): with R_k = phi_n^-_k + c G_k - v_k/[sigma],
+  // c = sigma^+/[sigma], and sum_k phi_n^-_k dl_k = flux imposed exactly, R = 0 implies
+  // mean(G) = mu. Solving R(G) - (mean(G) - mu) = 0 instead (a consistent rank-one term) moves
+  // the near-null eigenvalue ~c of the equilibrium-density mode to ~c - 1.
+  const bool deflate = sigma_minus_ > sigma_plus_ && options_.deflate_mean;
+  const double jump_sigma = sigma_plus_ - sigma_minus_;
+  double mean_target = 0.0;
+  if (deflate) {
+    double mean_v = 0.0;
+    for (int k = 0; k < m; ++k) mean_v += arc_weight_[k] * v_[k];
+    mean_v /= perimeter_;
+    mean_target = (mean_v / jump_sigma - interior_flux_ / perimeter_) / (sigma_plus_ / jump_sigma);
+  }
+  auto mean_of = [&](const double* xc) {
+    expand(xc);
+    double s = 0.0;
+    for (int k = 0; k < m; ++k) s += arc_weight_[k] * g_full_[k];
+    return s / perimeter_;
+  };
+  auto apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    out.resize(mc);
+    residual(in.data(), false, out.data());
+    if (deflate) {
+      out -= mean_of(in.data()) * restricted_one;
+    }
+  };
+  // Warm path: solve A dx = -R(x0) from dx = 0 (one Poisson solve for R(x0)), relative to the
+  // |b| = |R(0)| of the last cold solve, which changes only by O(interface displacement)
+  // between time steps. Cold path: b = -R(0) (one solve), GMRES from the guess (if any).
+  const bool warm = has_guess && options_.warm_start_refresh > 0 && reference_norm_ > 0.0 &&
+                    reference_markers_ == mc && warm_solves_ < options_.warm_start_refresh;
+  GmresResult r;
+  if (warm) {
+    Eigen::VectorXd rhs(mc), dx = Eigen::VectorXd::Zero(mc);
+    residual(x.data(), true, rhs.data());
+    rhs = -rhs;
+    if (deflate) rhs -= (mean_target - mean_of(x.data())) * restricted_one;
+    r = gmres_.Solve(apply, rhs, dx, options_.gmres, reference_norm_);
+    x += dx;
+    ++warm_solves_;
+  } else {
+    Eigen::VectorXd b(mc);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(mc);
+    residual(zero.data(), true, b.data());
+    b = -b;
+    if (deflate) b -= mean_target * restricted_one;
+    r = gmres_.Solve(apply, b, x, options_.gmres);
+    reference_norm_ = r.reference;
+    reference_markers_ = mc;
+    warm_solves_ = 0;
+  }
+  if (!r.converged) {
+    std::ostringstream msg;
+    msg << "FastIimSolver: GMRES did not converge: " << r.iterations << " iterations, residual "
+        << r.residual << " > tolerance " << options_.gmres.tolerance
+        << " x |b| = " << options_.gmres.tolerance * r.reference << " (sigma- = " << sigma_minus_
+        << ", sigma+ = " << sigma_plus_ << ", " << m << " markers, " << mc << " control)";
+    throw SolverError(msg.str());
+  }
+  expand(x.data());
+  g = g_full_;
+  return r;
+}
+
+InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const InterfaceProblem& problem,
+                                          std::vector<double>& g, std::vector<double>& phi) {
+  const auto start = std::chrono::steady_clock::now();
+  const Grid2D& grid = poisson_.grid();
+  const int m = curve.size();
+  if (!(problem.sigma_minus > 0.0) || !(problem.sigma_plus > 0.0)) {
+    throw std::invalid_argument("FastIimSolver: sigma_minus and sigma_plus must be > 0, got " +
+                                std::to_string(problem.sigma_minus) + " and " +
+                                std::to_string(problem.sigma_plus));
+  }
+  if (!problem.f.empty() && problem.f.size() != grid.size()) {
+    throw std::invalid_argument("FastIimSolver: problem.f has " + std::to_string(problem.f.size()) +
+                                " values, grid has " + std::to_string(grid.size()));
+  }
+  auto check_marker_size = [m](const std::vector<double>& x, const char* name) {
+    if (!x.empty() && static_cast<int>(x.size()) != m) {
+      throw std::invalid_argument(std::string("FastIimSolver: problem.") + name + " has " +
+                                  std::to_string(x.size()) + " values, curve has " +
+                                  std::to_string(m) + " markers");
+    }
+  };
+  check_marker_size(problem.w, "w");
+  check_marker_size(problem.v, "v");
+  poisson_solves_ = 0;
+  sigma_minus_ = problem.sigma_minus;
+  sigma_plus_ = problem.sigma_plus;
+  CheckResolution(curve);
+
+  SetUpBand(curve, problem);
 
   InterfaceSolveReport report;
   if (sigma_plus_ == sigma_minus_) {
@@ -356,189 +551,11 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
     for (int k = 0; k < m; ++k) g[k] = v_[k] / sigma_plus_;
     report.converged = true;
   } else {
-    // Control markers: every stride-th marker, stride from the mean spacing so that controls are
-    // >= min_control_spacing_h h apart on average; then, walking along the curve, a candidate
-    // closer than 3/4 of that to the previous control (or the last one to the first) is
-    // dropped. G at the other markers is the periodic spline through the control values. The
-    // walk matters where markers bunch (a deforming drop's tips gather them 0.24 h apart):
-    // controls closer than the grid resolves are near-null modes of the Schur system for
-    // sigma^- > sigma^+, and a drop in shear and field blew up on them.
-    // Only for sigma^- > sigma^+: for sigma^+ > sigma^- the Schur system has no near-null
-    // modes, every marker is a control, and the result does not depend on the marker order
-    // (thinning there cost up to 6x accuracy and made the answer depend on the direction of the
-    // markers).
-    const double min_spacing =
-        sigma_minus_ > sigma_plus_ ? options_.min_control_spacing_h * h : 0.0;
-    const int stride =
-        std::max(1, static_cast<int>(std::ceil(min_spacing * m / curve.ArcLength() - 1e-9)));
-    control_.clear();
-    control_.push_back(0);
-    double since_last = 0.0;
-    for (int k = 1; k < m; ++k) {
-      since_last += curve.SegmentArcLength(k - 1);
-      if (k % stride == 0 && since_last >= 0.75 * min_spacing) {
-        control_.push_back(k);
-        since_last = 0.0;
-      }
-    }
-    if (min_spacing > 0.0 && control_.size() > 1 &&
-        since_last + curve.SegmentArcLength(m - 1) < 0.75 * min_spacing) {
-      control_.pop_back();
-    }
-    // Fourier basis in arc length (FastIimOptions::control_basis): G(s) = c_0 + sum_j
-    // (a_j cos(2 pi j s / P) + b_j sin(2 pi j s / P)), j <= K, with as many unknowns as the
-    // controls above would have; the residual is projected on the same basis with the arc
-    // weights (Galerkin). The span does not depend on which marker is first nor on the marker
-    // direction (s -> s + c rotates each cos/sin pair, s -> P - s flips the sines).
-    const bool by_wavelength = sigma_minus_ >= options_.fourier_basis_min_ratio * sigma_plus_ &&
-                               options_.fourier_wavelength_h > 0.0;
-    const bool fourier = options_.control_basis == ControlBasis::kFourier &&
-                         (static_cast<int>(control_.size()) < m || by_wavelength);
-    int mc = static_cast<int>(control_.size());
-    if (fourier) {
-      const int k_max =
-          by_wavelength
-              ? std::max(
-                    2, std::min(static_cast<int>(perimeter_ / (options_.fourier_wavelength_h * h)),
-                                (m - 1) / 2))
-              : std::max(2, (mc - 1) / 2);
-      mc = 2 * k_max + 1;
-      basis_.resize(m, mc);
-      double arc = 0.0;
-      const double period = perimeter_;
-      for (int k = 0; k < m; ++k) {
-        basis_(k, 0) = 1.0;
-        for (int j = 1; j <= k_max; ++j) {
-          const double angle = 2.0 * M_PI * j * arc / period;
-          basis_(k, 2 * j - 1) = std::cos(angle);
-          basis_(k, 2 * j) = std::sin(angle);
-        }
-        arc += curve.SegmentArcLength(k);
-      }
-      weighted_basis_ = basis_;
-      for (int k = 0; k < m; ++k) weighted_basis_.row(k) *= arc_weight_[k] / perimeter_;
-      gram_.compute(weighted_basis_.transpose() * basis_);
-    }
-    const bool every_marker = !fourier && mc == m;
-    if (mc < 4) {
-      throw std::invalid_argument("FastIimSolver: only " + std::to_string(mc) +
-                                  " control markers (curve too small for the grid?)");
-    }
-    if (!fourier) {
-      control_knots_.resize(mc);
-      for (int c = 0; c < mc; ++c) control_knots_[c] = curve.knot(control_[c]);
-    }
-    g_full_.resize(m);
-    r_full_.resize(m);
-    auto expand = [&](const double* xc) {
-      if (every_marker) {
-        std::copy(xc, xc + m, g_full_.begin());
-        return;
-      }
-      if (fourier) {
-        Eigen::Map<Eigen::VectorXd>(g_full_.data(), m) =
-            basis_ * Eigen::Map<const Eigen::VectorXd>(xc, mc);
-        return;
-      }
-      scratch_.assign(xc, xc + mc);
-      control_spline_.Fit(control_knots_, curve.period(), scratch_);
-      for (int k = 0; k < m; ++k) g_full_[k] = control_spline_.Value(curve.knot(k));
-    };
-    auto restrict_to_unknowns = [&](const double* full, double* rc) {
-      if (fourier) {
-        Eigen::Map<Eigen::VectorXd>(rc, mc) =
-            weighted_basis_.transpose() * Eigen::Map<const Eigen::VectorXd>(full, m);
-      } else {
-        for (int c = 0; c < mc; ++c) rc[c] = full[control_[c]];
-      }
-    };
-    auto residual = [&](const double* xc, bool with_data, double* rc) {
-      expand(xc);
-      Residual(curve, g_full_.data(), with_data, r_full_.data());
-      restrict_to_unknowns(r_full_.data(), rc);
-    };
-    // The restriction of a residual that is 1 at every marker (the deflation's shift).
-    Eigen::VectorXd restricted_one(mc);
-    {
-      std::vector<double> ones(m, 1.0);
-      restrict_to_unknowns(ones.data(), restricted_one.data());
-    }
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(mc);
-    const bool has_guess = static_cast<int>(g.size()) == m;
-    if (has_guess) {
-      if (fourier) {
-        // Weighted least-squares coefficients of the guess.
-        x = gram_.solve(weighted_basis_.transpose() *
-                        Eigen::Map<const Eigen::VectorXd>(g.data(), m));
-      } else {
-        for (int c = 0; c < mc; ++c) x[c] = g[control_[c]];
-      }
-    }
-    // Mean deflation (FastIimOptions::deflate_mean): with R_k = phi_n^-_k + c G_k - v_k/[sigma],
-    // c = sigma^+/[sigma], and sum_k phi_n^-_k dl_k = flux imposed exactly, R = 0 implies
-    // mean(G) = mu. Solving R(G) - (mean(G) - mu) = 0 instead (a consistent rank-one term) moves
-    // the near-null eigenvalue ~c of the equilibrium-density mode to ~c - 1.
-    const bool deflate = sigma_minus_ > sigma_plus_ && options_.deflate_mean;
-    const double jump_sigma = sigma_plus_ - sigma_minus_;
-    double mean_target = 0.0;
-    if (deflate) {
-      double mean_v = 0.0;
-      for (int k = 0; k < m; ++k) mean_v += arc_weight_[k] * v_[k];
-      mean_v /= perimeter_;
-      mean_target =
-          (mean_v / jump_sigma - interior_flux_ / perimeter_) / (sigma_plus_ / jump_sigma);
-    }
-    auto mean_of = [&](const double* xc) {
-      expand(xc);
-      double s = 0.0;
-      for (int k = 0; k < m; ++k) s += arc_weight_[k] * g_full_[k];
-      return s / perimeter_;
-    };
-    auto apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-      out.resize(mc);
-      residual(in.data(), false, out.data());
-      if (deflate) {
-        out -= mean_of(in.data()) * restricted_one;
-      }
-    };
-    // Warm path: solve A dx = -R(x0) from dx = 0 (one Poisson solve for R(x0)), relative to the
-    // |b| = |R(0)| of the last cold solve, which changes only by O(interface displacement)
-    // between time steps. Cold path: b = -R(0) (one solve), GMRES from the guess (if any).
-    const bool warm = has_guess && options_.warm_start_refresh > 0 && reference_norm_ > 0.0 &&
-                      reference_markers_ == mc && warm_solves_ < options_.warm_start_refresh;
-    GmresResult r;
-    if (warm) {
-      Eigen::VectorXd rhs(mc), dx = Eigen::VectorXd::Zero(mc);
-      residual(x.data(), true, rhs.data());
-      rhs = -rhs;
-      if (deflate) rhs -= (mean_target - mean_of(x.data())) * restricted_one;
-      r = gmres_.Solve(apply, rhs, dx, options_.gmres, reference_norm_);
-      x += dx;
-      ++warm_solves_;
-    } else {
-      Eigen::VectorXd b(mc);
-      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(mc);
-      residual(zero.data(), true, b.data());
-      b = -b;
-      if (deflate) b -= mean_target * restricted_one;
-      r = gmres_.Solve(apply, b, x, options_.gmres);
-      reference_norm_ = r.reference;
-      reference_markers_ = mc;
-      warm_solves_ = 0;
-    }
+    ChooseUnknowns(curve);
+    const GmresResult r = SolveSchurSystem(curve, g);
     report.iterations = r.iterations;
     report.residual = r.residual;
     report.converged = r.converged;
-    if (!r.converged) {
-      std::ostringstream msg;
-      msg << "FastIimSolver: GMRES did not converge: " << r.iterations << " iterations, residual "
-          << r.residual << " > tolerance " << options_.gmres.tolerance
-          << " x |b| = " << options_.gmres.tolerance * r.reference << " (sigma- = " << sigma_minus_
-          << ", sigma+ = " << sigma_plus_ << ", " << m << " markers, " << mc << " control)";
-      throw SolverError(msg.str());
-    }
-    expand(x.data());
-    g = g_full_;
   }
   SolveForPotential(curve, g.data(), true, phi);
   fit_.Evaluate(phi.data(), band_jump_.data(), dn_minus_.data(), dt_minus_.data());

@@ -181,6 +181,15 @@ class FastIimSolver {
   int poisson_solves() const { return poisson_solves_; }
 
  private:
+  // The per-curve set-up of Solve: sides, band and crossing pairs, fit rows, F = f / sigma with
+  // the side data, the jump data of J at the band points, the interior flux.
+  void SetUpBand(const ClosedCurve& curve, const InterfaceProblem& problem);
+  // The GMRES unknowns for sigma^- != sigma^+: control markers, or the Fourier basis (its
+  // Galerkin test functions and Gram matrix); sets fourier_, every_marker_, unknowns_.
+  void ChooseUnknowns(const ClosedCurve& curve);
+  // GMRES on the Schur system in the unknowns of ChooseUnknowns (mean deflation, warm path);
+  // g: guess in, solution at the markers out. Throws SolverError if GMRES does not converge.
+  GmresResult SolveSchurSystem(const ClosedCurve& curve, std::vector<double>& g);
   // Residual R(g) (with_data) or its linear part R(g) - R(0) (without), into r.
   void Residual(const ClosedCurve& curve, const double* g, bool with_data, double* r);
   // sigma^- > sigma^+ only: shifts phi_n^- by a constant so that its integral over the curve
@@ -226,7 +235,10 @@ class FastIimSolver {
   std::vector<BandSample> band_samples_;
   std::vector<std::uint8_t> band_used_;
   std::vector<double> g_second_;
-  std::vector<int> control_;  // marker indices of the GMRES unknowns
+  std::vector<int> control_;   // marker indices of the GMRES unknowns
+  bool fourier_ = false;       // the unknowns are Fourier coefficients
+  bool every_marker_ = false;  // the unknowns are G at every marker
+  int unknowns_ = 0;
   std::vector<double> control_knots_, g_full_, r_full_;
   Eigen::MatrixXd basis_, weighted_basis_;  // ControlBasis::kFourier: M x unknowns
   Eigen::LDLT<Eigen::MatrixXd> gram_;
