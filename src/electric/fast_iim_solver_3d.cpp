@@ -521,6 +521,103 @@ GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
   return result;
 }
 
+void FastIimSolver3D::CheckThinParts(const TriangleMesh& surface) const {
+  const Grid3D& grid3 = grid();
+  const MultipleCrossing thin = FindMultipleCrossing(grid3, surface);
+  if (thin.found) {
+    const char* axis_name[3] = {"x", "y", "z"};
+    std::ostringstream os;
+    os << "3D immersed interface: the surface crosses the grid segment from node (" << thin.node[0]
+       << ", " << thin.node[1] << ", " << thin.node[2] << ") along " << axis_name[thin.axis]
+       << " twice, " << thin.gap_h << " h apart: ";
+    if (thin.gap_h < 0.05) {
+      // No grid resolves that: the sheet doubles back on itself within a sliver of a cell.
+      os << "the surface folds there (a wrinkle or a tangled mesh, not a part any grid "
+            "resolves)";
+    } else {
+      os << "a part thinner than the grid spacing h = " << grid3.h
+         << " (e.g. a biconcave dimple), which the stencil cannot see; the electric grid "
+         << "needs h below " << thin.gap_h * grid3.h << " there";
+    }
+    throw SolverError(os.str());
+  }
+}
+
+void FastIimSolver3D::SetUpData(const TriangleMesh& surface, const InterfaceProblem3D& problem) {
+  const Grid3D& grid3 = grid();
+  const int nv = surface.vertex_count();
+  w_ = problem.w.empty() ? std::vector<double>(nv, 0.0) : problem.w;
+  v_ = problem.v.empty() ? std::vector<double>(nv, 0.0) : problem.v;
+  // Data part of J: the w rows and the [f/sigma] terms.
+  const std::size_t nb = band_node_.size();
+  band_data_.resize(nb);
+  for (std::size_t b = 0; b < nb; ++b) {
+    double j = 0;
+    for (int q = band_offset_[b]; q < band_offset_[b + 1]; ++q) {
+      j += band_w_row_[q] * w_[band_support_[q]];
+    }
+    const int vertex = band_vertex_[b];
+    if (!problem.f_over_sigma_jump.empty()) {
+      j += band_f_coefficient_[b] * problem.f_over_sigma_jump[vertex];
+    }
+    if (!problem.f_over_sigma_dxi_jump.empty()) {
+      j += band_f_dxi_coefficient_[b] * problem.f_over_sigma_dxi_jump[vertex];
+    }
+    band_data_[b] = j;
+  }
+  rhs_base_.assign(grid3.size(), 0.0);
+  if (!problem.f.empty()) {
+    for (std::size_t c = 0; c < grid3.size(); ++c) {
+      rhs_base_[c] = problem.f[c] / (sides_.side[c] > 0 ? sigma_plus_ : sigma_minus_);
+    }
+  }
+  AddBoundaryDataToRhs(grid3, poisson_.boundaries(), problem.boundary, rhs_base_);
+}
+
+GmresResult FastIimSolver3D::SolveAtVertices(int nv, std::vector<double>& g) {
+  const double jump = sigma_plus_ - sigma_minus_;
+  const double scale = sigma_plus_ / jump;
+  // R(G) = dn^-(G) + scale G - v/[sigma]; A G = R(G) - R(0), b = -R(0).
+  PotentialAndNormalDerivative(std::vector<double>(nv, 0.0).data(), true, phi_work_, dn_work_);
+  Eigen::VectorXd b(nv), x(nv);
+  for (int v = 0; v < nv; ++v) {
+    b(v) = -(dn_work_[v] - v_[v] / jump);
+    x(v) = g[v];
+  }
+  std::vector<double> gv(nv);
+  const RestartedGmres::MatVec apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    for (int v = 0; v < nv; ++v) gv[v] = in(v);
+    PotentialAndNormalDerivative(gv.data(), false, phi_work_, dn_work_);
+    out.resize(nv);
+    for (int v = 0; v < nv; ++v) out(v) = dn_work_[v] + scale * in(v);
+  };
+  const GmresResult r = gmres_.Solve(apply, b, x, options_.gmres);
+  for (int v = 0; v < nv; ++v) g[v] = x(v);
+  return r;
+}
+
+void FastIimSolver3D::TangentialGradients(const std::vector<double>& phi) {
+  const int nv = static_cast<int>(fit_normal_.cols());
+  // Tangential gradients: phi^- from the fit's eta rows, phi^+ = phi^- + grad_s w (the patch fit
+  // of w, projected on the fit's tangent plane).
+  tangent_minus_.resize(3, nv);
+  tangent_plus_.resize(3, nv);
+  for (int v = 0; v < nv; ++v) {
+    double d1 = 0, d2 = 0;
+    for (int q = fit_offset_[v]; q < fit_offset_[v + 1]; ++q) {
+      const double value = phi[fit_node_[q]] - (fit_slot_[q] >= 0 ? band_jump_[fit_slot_[q]] : 0.0);
+      d1 += fit_gamma_t1_[q] * value;
+      d2 += fit_gamma_t2_[q] * value;
+    }
+    tangent_minus_.col(v) = d1 * fit_t1_.col(v) + d2 * fit_t2_.col(v);
+    const auto a = fit_->FitFunction(v, w_);
+    const SurfacePatch& patch = fit_->patch(v);
+    Eigen::Vector3d grad_w = a[1] * patch.t1 + a[2] * patch.t2;
+    grad_w -= grad_w.dot(fit_normal_.col(v)) * fit_normal_.col(v);
+    tangent_plus_.col(v) = tangent_minus_.col(v) + grad_w;
+  }
+}
+
 InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
                                             const InterfaceProblem3D& problem,
                                             std::vector<double>& g, std::vector<double>& phi) {
@@ -573,53 +670,11 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
   fit_ = std::make_unique<LocalSurfaceFit>(surface, 2.0 * grid3.h, 2, 3, options_.threads);
   CheckResolution(surface);
   sides_ = ClassifyNodes(grid3, surface);
-  const MultipleCrossing thin = FindMultipleCrossing(grid3, surface);
-  if (thin.found) {
-    const char* axis_name[3] = {"x", "y", "z"};
-    std::ostringstream os;
-    os << "3D immersed interface: the surface crosses the grid segment from node (" << thin.node[0]
-       << ", " << thin.node[1] << ", " << thin.node[2] << ") along " << axis_name[thin.axis]
-       << " twice, " << thin.gap_h << " h apart: ";
-    if (thin.gap_h < 0.05) {
-      // No grid resolves that: the sheet doubles back on itself within a sliver of a cell.
-      os << "the surface folds there (a wrinkle or a tangled mesh, not a part any grid "
-            "resolves)";
-    } else {
-      os << "a part thinner than the grid spacing h = " << grid3.h
-         << " (e.g. a biconcave dimple), which the stencil cannot see; the electric grid "
-         << "needs h below " << thin.gap_h * grid3.h << " there";
-    }
-    throw SolverError(os.str());
-  }
+  CheckThinParts(surface);
   SetUpBand(surface);
   SetUpFits(surface);
 
-  w_ = problem.w.empty() ? std::vector<double>(nv, 0.0) : problem.w;
-  v_ = problem.v.empty() ? std::vector<double>(nv, 0.0) : problem.v;
-  // Data part of J: the w rows and the [f/sigma] terms.
-  const std::size_t nb = band_node_.size();
-  band_data_.resize(nb);
-  for (std::size_t b = 0; b < nb; ++b) {
-    double j = 0;
-    for (int q = band_offset_[b]; q < band_offset_[b + 1]; ++q) {
-      j += band_w_row_[q] * w_[band_support_[q]];
-    }
-    const int vertex = band_vertex_[b];
-    if (!problem.f_over_sigma_jump.empty()) {
-      j += band_f_coefficient_[b] * problem.f_over_sigma_jump[vertex];
-    }
-    if (!problem.f_over_sigma_dxi_jump.empty()) {
-      j += band_f_dxi_coefficient_[b] * problem.f_over_sigma_dxi_jump[vertex];
-    }
-    band_data_[b] = j;
-  }
-  rhs_base_.assign(grid3.size(), 0.0);
-  if (!problem.f.empty()) {
-    for (std::size_t c = 0; c < grid3.size(); ++c) {
-      rhs_base_[c] = problem.f[c] / (sides_.side[c] > 0 ? sigma_plus_ : sigma_minus_);
-    }
-  }
-  AddBoundaryDataToRhs(grid3, poisson_.boundaries(), problem.boundary, rhs_base_);
+  SetUpData(surface, problem);
 
   InterfaceSolveReport report;
   const double jump = sigma_plus_ - sigma_minus_;
@@ -632,23 +687,7 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
     if (harmonic) {
       r = SolveInHarmonicBasis(surface, problem, level, g);
     } else {
-      const double scale = sigma_plus_ / jump;
-      // R(G) = dn^-(G) + scale G - v/[sigma]; A G = R(G) - R(0), b = -R(0).
-      PotentialAndNormalDerivative(std::vector<double>(nv, 0.0).data(), true, phi_work_, dn_work_);
-      Eigen::VectorXd b(nv), x(nv);
-      for (int v = 0; v < nv; ++v) {
-        b(v) = -(dn_work_[v] - v_[v] / jump);
-        x(v) = g[v];
-      }
-      std::vector<double> gv(nv);
-      const RestartedGmres::MatVec apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-        for (int v = 0; v < nv; ++v) gv[v] = in(v);
-        PotentialAndNormalDerivative(gv.data(), false, phi_work_, dn_work_);
-        out.resize(nv);
-        for (int v = 0; v < nv; ++v) out(v) = dn_work_[v] + scale * in(v);
-      };
-      r = gmres_.Solve(apply, b, x, options_.gmres);
-      for (int v = 0; v < nv; ++v) g[v] = x(v);
+      r = SolveAtVertices(nv, g);
     }
     report.iterations = r.iterations;
     report.residual = r.residual;
@@ -665,24 +704,7 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
   CheckFitAgreement(phi, g);
   dn_plus_.resize(nv);
   for (int v = 0; v < nv; ++v) dn_plus_[v] = dn_minus_[v] + g[v];
-  // Tangential gradients: phi^- from the fit's eta rows, phi^+ = phi^- + grad_s w (the patch fit
-  // of w, projected on the fit's tangent plane).
-  tangent_minus_.resize(3, nv);
-  tangent_plus_.resize(3, nv);
-  for (int v = 0; v < nv; ++v) {
-    double d1 = 0, d2 = 0;
-    for (int q = fit_offset_[v]; q < fit_offset_[v + 1]; ++q) {
-      const double value = phi[fit_node_[q]] - (fit_slot_[q] >= 0 ? band_jump_[fit_slot_[q]] : 0.0);
-      d1 += fit_gamma_t1_[q] * value;
-      d2 += fit_gamma_t2_[q] * value;
-    }
-    tangent_minus_.col(v) = d1 * fit_t1_.col(v) + d2 * fit_t2_.col(v);
-    const auto a = fit_->FitFunction(v, w_);
-    const SurfacePatch& patch = fit_->patch(v);
-    Eigen::Vector3d grad_w = a[1] * patch.t1 + a[2] * patch.t2;
-    grad_w -= grad_w.dot(fit_normal_.col(v)) * fit_normal_.col(v);
-    tangent_plus_.col(v) = tangent_minus_.col(v) + grad_w;
-  }
+  TangentialGradients(phi);
   last_phi_side_jump_ = band_jump_;
   report.solve_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -163,6 +163,14 @@ class FastIimSolver3D {
 
  private:
   void CheckResolution(const TriangleMesh& surface) const;
+  // A grid segment crossed twice by the surface (a fold, or a part thinner than h): SolverError.
+  void CheckThinParts(const TriangleMesh& surface) const;
+  // w, v, the data part of J at the band nodes and F = f / sigma with the face data.
+  void SetUpData(const TriangleMesh& surface, const InterfaceProblem3D& problem);
+  // GMRES on the Schur system with G at every vertex (g: guess in, solution out).
+  GmresResult SolveAtVertices(int nv, std::vector<double>& g);
+  // grad_s phi^- from the fits' tangent rows and grad_s phi^+ = grad_s phi^- + grad_s w.
+  void TangentialGradients(const std::vector<double>& phi);
   // IcosphereLevel(surface), with IcosphereMesh(j)'s triangles for j <= level kept for the
   // quadrature weights (rebuilt only when the connectivity changes).
   int CachedIcosphereLevel(const TriangleMesh& surface);
