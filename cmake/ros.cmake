@@ -30,6 +30,10 @@ if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
   add_test(NAME ros_exit_codes COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/exit_codes.sh)
   set_tests_properties(ros_exit_codes PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
                        LABELS "ros;integration")
+  # scripts/run's output comes live through a pipe; it prints no cmake lines when up to date.
+  add_test(NAME ros_live_output COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/live_output_test.py)
+  set_tests_properties(ros_live_output PROPERTIES RUN_SERIAL TRUE TIMEOUT 600
+                       LABELS "ros;integration")
   # One launch that takes scene:=, thin includes of it per scene, doc= on every argument.
   add_test(NAME ros_launch_files COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/launch_files_test.py)
   set_tests_properties(ros_launch_files PROPERTIES TIMEOUT 300 LABELS "ros;integration")
