@@ -34,6 +34,11 @@ if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
   add_test(NAME ros_live_output COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/live_output_test.py)
   set_tests_properties(ros_live_output PROPERTIES RUN_SERIAL TRUE TIMEOUT 600
                        LABELS "ros;integration")
+  # With a kept roscore, no launch or rosrun takes an earlier run's parameters silently.
+  add_test(NAME ros_stale_parameters
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/stale_parameters_test.py)
+  set_tests_properties(ros_stale_parameters PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
+                       LABELS "ros;integration")
   # One launch that takes scene:=, thin includes of it per scene, doc= on every argument.
   add_test(NAME ros_launch_files COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/launch_files_test.py)
   set_tests_properties(ros_launch_files PROPERTIES TIMEOUT 300 LABELS "ros;integration")

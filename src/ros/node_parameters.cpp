@@ -2,7 +2,9 @@
 
 #include <ros/ros.h>
 
+#include <algorithm>
 #include <charconv>
+#include <fstream>
 #include <functional>
 #include <sstream>
 #include <stdexcept>
@@ -102,7 +104,84 @@ std::vector<std::string> StartValueOverrides(double start_ca_e, double start_ca)
   return overrides;
 }
 
+std::map<std::string, std::string> CommandLineRemappings(const std::vector<std::string>& args) {
+  std::map<std::string, std::string> remappings;
+  for (const std::string& arg : args) {
+    const size_t pos = arg.find(":=");
+    if (pos != std::string::npos && pos > 0) remappings[arg.substr(0, pos)] = arg.substr(pos + 2);
+  }
+  return remappings;
+}
+
+std::vector<std::string> UnrequestedParameters(
+    const std::vector<std::string>& server_names, const std::string& private_ns,
+    const std::map<std::string, std::string>& remappings) {
+  std::vector<std::string> names;
+  if (remappings.count("__log") > 0) return names;  // roslaunch: cleared by clear_params
+  const std::string prefix = private_ns + "/";
+  for (const std::string& full : server_names) {
+    if (full.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string name = full.substr(prefix.size());
+    if (name.empty() || name == "Ca_E" || name == "Ca" || name == "paused") continue;
+    if (remappings.count("_" + name) > 0) continue;  // given as _name:=value
+    names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  return names;
+}
+
+namespace {
+
+std::string ParameterText(XmlRpc::XmlRpcValue& v) {
+  switch (v.getType()) {
+    case XmlRpc::XmlRpcValue::TypeDouble: {
+      char text[32];
+      const auto end = std::to_chars(text, text + sizeof text, static_cast<double>(v));
+      return std::string(text, end.ptr);
+    }
+    case XmlRpc::XmlRpcValue::TypeInt:
+      return std::to_string(static_cast<int>(v));
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      return static_cast<bool>(v) ? "true" : "false";
+    case XmlRpc::XmlRpcValue::TypeString:
+      return static_cast<std::string>(v);
+    case XmlRpc::XmlRpcValue::TypeStruct:
+      return v.size() == 0 ? "{}" : "{...}";
+    default:
+      return "(" + v.toXml() + ")";
+  }
+}
+
+// Under rosrun, the private parameters left on the server by an earlier run (or set with
+// rosparam) are taken as if given: say which, with their values.
+void WarnUnrequestedParameters(const ros::NodeHandle& pnh) {
+  std::vector<std::string> server_names;
+  if (!ros::param::getParamNames(server_names)) return;
+  // The process's own command line (ros::init took the name:=value arguments out of argv, and
+  // ros::names keeps no _name or __name remapping).
+  std::ifstream cmdline("/proc/self/cmdline", std::ios::binary);
+  std::vector<std::string> args;
+  for (std::string arg; std::getline(cmdline, arg, '\0');) args.push_back(arg);
+  const std::vector<std::string> names =
+      UnrequestedParameters(server_names, pnh.getNamespace(), CommandLineRemappings(args));
+  if (names.empty()) return;
+  std::string list;
+  for (const std::string& name : names) {
+    XmlRpc::XmlRpcValue value;
+    if (!pnh.getParam(name, value)) continue;
+    list += (list.empty() ? "~" : ", ~") + name + " = " + ParameterText(value);
+  }
+  ROS_WARN(
+      "ehd_capsule: taken from the parameter server, not from this command line (left by an "
+      "earlier run or set with rosparam; `rosparam delete %s` clears them): %s",
+      pnh.getNamespace().c_str(), list.c_str());
+}
+
+}  // namespace
+
 NodeParameters ReadNodeParameters(ros::NodeHandle& pnh, const ros::NodeHandle& nh) {
+  WarnUnrequestedParameters(pnh);
   NodeParameters p;
   pnh.param<std::string>("scene", p.scene, "shear_field");
   int steps = 0;

@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace ehd::ros_node {
 namespace {
@@ -94,6 +96,28 @@ TEST(NodeParameters, StartValuesBelowZeroKeepTheScenes) {
   EXPECT_EQ(StartValueOverrides(0.3, -1), std::vector<std::string>{"Ca_E=0.3"});
   const std::vector<std::string> both = {"Ca_E=0", "Ca=0.05"};
   EXPECT_EQ(StartValueOverrides(0.0, 0.05), both);
+}
+
+TEST(NodeParameters, UnrequestedParametersAreThoseNotOnTheCommandLine) {
+  const std::vector<std::string> server = {"/ehd_capsule/steps",   "/ehd_capsule/set/Ca_E",
+                                           "/ehd_capsule/set/N",   "/ehd_capsule/scene",
+                                           "/ehd_capsule/Ca_E",    "/ehd_capsule/paused",
+                                           "/other/ehd_capsule/x", "/ehd_capsule_2/steps",
+                                           "/use_sim_time",        "/ehd_capsule/progress_period"};
+  // rosrun ehd_capsule ehd_capsule_node _scene:=shear_field _progress_period:=0 state:=s
+  const std::map<std::string, std::string> rosrun = CommandLineRemappings(
+      {"/x/ehd_capsule_node", "_scene:=shear_field", "_progress_period:=0", "state:=s", ":=y"});
+  EXPECT_EQ(rosrun, (std::map<std::string, std::string>{
+                        {"_scene", "shear_field"}, {"_progress_period", "0"}, {"state", "s"}}));
+  EXPECT_EQ(UnrequestedParameters(server, "/ehd_capsule", rosrun),
+            (std::vector<std::string>{"set/Ca_E", "set/N", "steps"}));
+  EXPECT_TRUE(UnrequestedParameters({"/ehd_capsule/Ca", "/ehd_capsule/scene"}, "/ehd_capsule",
+                                    {{"_scene", "x"}})
+                  .empty());
+  // roslaunch (it passes __log:=...) clears the namespace first: nothing to report.
+  EXPECT_TRUE(
+      UnrequestedParameters(server, "/ehd_capsule", {{"__name", "ehd_capsule"}, {"__log", "f"}})
+          .empty());
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <xmlrpcpp/XmlRpcValue.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -73,8 +74,24 @@ std::vector<std::string> SceneOverrides(XmlRpc::XmlRpcValue& set);
 // overrides appended after ~set's.
 std::vector<std::string> StartValueOverrides(double start_ca_e, double start_ca);
 
+// The name:=value arguments of a command line (_name:=value, __log:=..., topic remappings) as
+// name -> value.
+std::map<std::string, std::string> CommandLineRemappings(const std::vector<std::string>& args);
+// The private parameters a start takes from the parameter server without being told to: of
+// server_names (the server's parameter names, as ros::param::getParamNames gives them), those in
+// private_ns ("/ehd_capsule") that remappings (CommandLineRemappings of the node's command line)
+// do not give as _name:=value, relative ("steps", "set/N"), sorted.
+// dynamic_reconfigure's Ca_E, Ca and paused are left out (a start overwrites them with the
+// scene's values). Empty when the node runs under roslaunch (a __log remapping): the launch files
+// clear the private namespace first (clear_params), so what is there is the launch's.
+std::vector<std::string> UnrequestedParameters(
+    const std::vector<std::string>& server_names, const std::string& private_ns,
+    const std::map<std::string, std::string>& remappings);
+
 // Reads every private parameter (and /use_sim_time), validates them and writes the effective
-// scene, publish_every and frame_id back (so `rosparam get` shows what runs).
+// scene, publish_every and frame_id back (so `rosparam get` shows what runs). Warns naming each
+// parameter (and its value) of UnrequestedParameters: under rosrun, one left by an earlier run
+// or set with rosparam would change the run silently.
 NodeParameters ReadNodeParameters(ros::NodeHandle& private_nh, const ros::NodeHandle& nh);
 
 }  // namespace ehd::ros_node
