@@ -39,6 +39,10 @@ if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/stale_parameters_test.py)
   set_tests_properties(ros_stale_parameters PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
                        LABELS "ros;integration")
+  # A relative bag path is taken from the caller's directory (not ROS_HOME).
+  add_test(NAME ros_bag_path COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/bag_path_test.py)
+  set_tests_properties(ros_bag_path PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
+                       LABELS "ros;integration")
   # One launch that takes scene:=, thin includes of it per scene, doc= on every argument.
   add_test(NAME ros_launch_files COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/launch_files_test.py)
   set_tests_properties(ros_launch_files PROPERTIES TIMEOUT 300 LABELS "ros;integration")

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -131,7 +132,38 @@ std::vector<std::string> UnrequestedParameters(
   return names;
 }
 
+std::string ResolveNodePath(const std::string& param, const std::string& path,
+                            const std::string& working_directory, const std::string& process_cwd,
+                            bool under_roslaunch) {
+  const std::filesystem::path given(path);
+  if (given.is_absolute()) return given.lexically_normal().string();
+  std::string base = working_directory;
+  if (base.empty()) {
+    if (under_roslaunch) {
+      throw std::invalid_argument(
+          param + " '" + path + "' is relative, and roslaunch runs the node in ROS_HOME (" +
+          process_cwd +
+          "), not where it was started: give an absolute path, or ~working_directory (the "
+          "package's launch files pass $(env PWD))");
+    }
+    base = process_cwd;
+  }
+  if (!std::filesystem::path(base).is_absolute()) {
+    throw std::invalid_argument("~working_directory '" + base + "' must be an absolute path");
+  }
+  return (std::filesystem::path(base) / given).lexically_normal().string();
+}
+
 namespace {
+
+// The process's own command line as name:=value remappings (ros::init took them out of argv,
+// and ros::names keeps no _name or __name remapping).
+std::map<std::string, std::string> OwnRemappings() {
+  std::ifstream cmdline("/proc/self/cmdline", std::ios::binary);
+  std::vector<std::string> args;
+  for (std::string arg; std::getline(cmdline, arg, '\0');) args.push_back(arg);
+  return CommandLineRemappings(args);
+}
 
 std::string ParameterText(XmlRpc::XmlRpcValue& v) {
   switch (v.getType()) {
@@ -158,13 +190,8 @@ std::string ParameterText(XmlRpc::XmlRpcValue& v) {
 void WarnUnrequestedParameters(const ros::NodeHandle& pnh) {
   std::vector<std::string> server_names;
   if (!ros::param::getParamNames(server_names)) return;
-  // The process's own command line (ros::init took the name:=value arguments out of argv, and
-  // ros::names keeps no _name or __name remapping).
-  std::ifstream cmdline("/proc/self/cmdline", std::ios::binary);
-  std::vector<std::string> args;
-  for (std::string arg; std::getline(cmdline, arg, '\0');) args.push_back(arg);
   const std::vector<std::string> names =
-      UnrequestedParameters(server_names, pnh.getNamespace(), CommandLineRemappings(args));
+      UnrequestedParameters(server_names, pnh.getNamespace(), OwnRemappings());
   if (names.empty()) return;
   std::string list;
   for (const std::string& name : names) {
@@ -221,7 +248,19 @@ NodeParameters ReadNodeParameters(ros::NodeHandle& pnh, const ros::NodeHandle& n
   // operator who is not there) and pauses a live one.
   pnh.param<std::string>("on_record_error", p.on_record_error, p.batch() ? "stop" : "pause");
   nh.param("/use_sim_time", p.use_sim_time, false);
+  pnh.param<std::string>("working_directory", p.working_directory, "");
   ValidateNodeParameters(p);
+  // Relative paths: against the caller's directory, never silently under ROS_HOME.
+  std::error_code ec;
+  const std::string cwd = std::filesystem::current_path(ec).string();
+  const bool under_roslaunch = OwnRemappings().count("__log") > 0;
+  const bool scene_is_path =
+      p.scene.find('/') != std::string::npos ||
+      (p.scene.size() > 5 && p.scene.compare(p.scene.size() - 5, 5, ".yaml") == 0);
+  if (scene_is_path) {
+    p.scene = ResolveNodePath("~scene", p.scene, p.working_directory, cwd, under_roslaunch);
+  }
+  if (p.record) p.bag = ResolveNodePath("~bag", p.bag, p.working_directory, cwd, under_roslaunch);
 
   XmlRpc::XmlRpcValue set;
   if (pnh.getParam("set", set)) p.overrides = SceneOverrides(set);
@@ -236,6 +275,7 @@ NodeParameters ReadNodeParameters(ros::NodeHandle& pnh, const ros::NodeHandle& n
   pnh.setParam("scene", p.scene);
   pnh.setParam("publish_every", p.publish_every);
   pnh.setParam("frame_id", p.frame_id);
+  if (p.record) pnh.setParam("bag", p.bag);
   return p;
 }
 

@@ -120,5 +120,27 @@ TEST(NodeParameters, UnrequestedParametersAreThoseNotOnTheCommandLine) {
           .empty());
 }
 
+TEST(NodeParameters, RelativePathsAreTakenFromTheCallersDirectory) {
+  // roslaunch: against ~working_directory (the launch files pass $(optenv PWD)), not ROS_HOME.
+  EXPECT_EQ(ResolveNodePath("~bag", "runs/a.bag", "/home/u/work", "/home/u/.ros", true),
+            "/home/u/work/runs/a.bag");
+  EXPECT_EQ(ResolveNodePath("~bag", "./a.bag", "/home/u/work/", "/home/u/.ros", true),
+            "/home/u/work/a.bag");
+  EXPECT_EQ(ResolveNodePath("~bag", "/data/a.bag", "/home/u/work", "/home/u/.ros", true),
+            "/data/a.bag");
+  // rosrun: the node runs in the caller's directory.
+  EXPECT_EQ(ResolveNodePath("~bag", "../a.bag", "", "/home/u/work", false), "/home/u/a.bag");
+  // roslaunch without ~working_directory: refused, naming the parameter and ROS_HOME.
+  try {
+    ResolveNodePath("~bag", "a.bag", "", "/home/u/.ros", true);
+    FAIL() << "a relative ~bag under roslaunch without ~working_directory was accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("~bag 'a.bag' is relative"), std::string::npos) << what;
+    EXPECT_NE(what.find("ROS_HOME (/home/u/.ros)"), std::string::npos) << what;
+  }
+  EXPECT_THROW(ResolveNodePath("~bag", "a.bag", "work", "/", false), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace ehd::ros_node
