@@ -43,6 +43,11 @@ if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
   add_test(NAME ros_bag_path COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/bag_path_test.py)
   set_tests_properties(ros_bag_path PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
                        LABELS "ros;integration")
+  # A recording logs its bytes per state, MB/s and free space, and warns before the disk fills.
+  add_test(NAME ros_recording_rate
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/recording_rate_test.py)
+  set_tests_properties(ros_recording_rate PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
+                       LABELS "ros;integration")
   # One launch that takes scene:=, thin includes of it per scene, doc= on every argument.
   add_test(NAME ros_launch_files COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/launch_files_test.py)
   set_tests_properties(ros_launch_files PROPERTIES TIMEOUT 300 LABELS "ros;integration")

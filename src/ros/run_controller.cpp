@@ -283,7 +283,10 @@ void RunController::StepOnce() {
   }
   pub_.CountStep();
   const SimulationState& s = sim_.state();
-  if (s.step % publish_every_ == 0) pub_.PublishState();
+  if (s.step % publish_every_ == 0) {
+    pub_.PublishState();
+    if (recorder_) ReportRecordingRate();
+  }
   if (params_.steps > 0 && s.step >= params_.steps) {
     run_state_ = RunState::kFinished;
     end_reason_ = "reached " + std::to_string(s.step) + " steps";
@@ -297,6 +300,18 @@ void RunController::StepOnce() {
     ROS_INFO("ehd_capsule: steady to %g at t = %g (D_xy = %.5f, theta/pi = %.4f); stopping",
              params_.until_steady, s.time, s.dxy, s.inclination / M_PI);
   }
+}
+
+void RunController::ReportRecordingRate() {
+  const std::optional<RecordingRate> rate = recorder_->SampleRate(ros::WallTime::now().toSec());
+  if (!rate) return;
+  long states_left = -1;  // a live run or ~until_steady: the end is not known
+  if (params_.steps > 0) {
+    states_left = std::max(0L, (params_.steps - sim_.state().step) / publish_every_);
+  }
+  const RecordingReport report = DescribeRecordingRate(*rate, states_left);
+  ROS_INFO("ehd_capsule: %s", report.info.c_str());
+  if (!report.warning.empty()) ROS_WARN("ehd_capsule: %s", report.warning.c_str());
 }
 
 void RunController::PrintProgress(bool force) {

@@ -69,6 +69,7 @@ class RunController {
   void Fail(const std::string& reason);
   void OnRecordError(const std::string& reason);
   void PrintProgress(bool force);
+  void ReportRecordingRate();  // once per bag, from its first second (BagRecorder::SampleRate)
   void PublishDiagnostics(bool force);
   RunStatus Status() const;
 
