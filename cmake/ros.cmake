@@ -48,6 +48,10 @@ if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/recording_rate_test.py)
   set_tests_properties(ros_recording_rate PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
                        LABELS "ros;integration")
+  # 3D: the progress line and summary print D_z and the volume drift (D_xy, theta with shear).
+  add_test(NAME ros_measures_3d COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/measures_3d_test.py)
+  set_tests_properties(ros_measures_3d PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
+                       LABELS "ros;integration")
   # One launch that takes scene:=, thin includes of it per scene, doc= on every argument.
   add_test(NAME ros_launch_files COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/launch_files_test.py)
   set_tests_properties(ros_launch_files PROPERTIES TIMEOUT 300 LABELS "ros;integration")
