@@ -30,6 +30,28 @@ if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
   add_test(NAME ros_exit_codes COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/exit_codes.sh)
   set_tests_properties(ros_exit_codes PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
                        LABELS "ros;integration")
+  # scripts/run's output comes live through a pipe; it prints no cmake lines when up to date.
+  add_test(NAME ros_live_output COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/live_output_test.py)
+  set_tests_properties(ros_live_output PROPERTIES RUN_SERIAL TRUE TIMEOUT 600
+                       LABELS "ros;integration")
+  # With a kept roscore, no launch or rosrun takes an earlier run's parameters silently.
+  add_test(NAME ros_stale_parameters
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/stale_parameters_test.py)
+  set_tests_properties(ros_stale_parameters PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
+                       LABELS "ros;integration")
+  # A relative bag path is taken from the caller's directory (not ROS_HOME).
+  add_test(NAME ros_bag_path COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/bag_path_test.py)
+  set_tests_properties(ros_bag_path PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
+                       LABELS "ros;integration")
+  # A recording logs its bytes per state, MB/s and free space, and warns before the disk fills.
+  add_test(NAME ros_recording_rate
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/recording_rate_test.py)
+  set_tests_properties(ros_recording_rate PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
+                       LABELS "ros;integration")
+  # 3D: the progress line and summary print D_z and the volume drift (D_xy, theta with shear).
+  add_test(NAME ros_measures_3d COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/measures_3d_test.py)
+  set_tests_properties(ros_measures_3d PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
+                       LABELS "ros;integration")
   # One launch that takes scene:=, thin includes of it per scene, doc= on every argument.
   add_test(NAME ros_launch_files COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/launch_files_test.py)
   set_tests_properties(ros_launch_files PROPERTIES TIMEOUT 300 LABELS "ros;integration")

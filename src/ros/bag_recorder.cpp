@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <sys/statvfs.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -42,6 +43,9 @@ void BagRecorder::Open() {
   bag_ = std::move(bag);
   states_ = 0;
   failure_.clear();
+  bytes_ = 0.0;
+  rate_states0_ = -1;
+  rate_reported_ = false;
   ROS_INFO("ehd_capsule: recording to %s (as %s until closed)", path_.c_str(),
            active_path().c_str());
 }
@@ -66,6 +70,94 @@ void BagRecorder::OpenNext() {
     stem.resize(stem.size() - 4);
   path_ = stem + "." + std::to_string(serial_) + ".bag";
   Open();
+}
+
+std::optional<RecordingRate> BagRecorder::SampleRate(double wall_seconds) {
+  if (rate_reported_ || !bag_ || states_ < 1) return std::nullopt;
+  if (rate_states0_ < 0) {
+    rate_states0_ = states_;
+    rate_bytes0_ = bytes_;
+    rate_time0_ = wall_seconds;
+    return std::nullopt;
+  }
+  const double seconds = wall_seconds - rate_time0_;
+  if (seconds < 1.0 || states_ <= rate_states0_) return std::nullopt;
+  rate_reported_ = true;
+  RecordingRate rate;
+  rate.states = states_ - rate_states0_;
+  rate.seconds = seconds;
+  rate.bytes_per_state = (bytes_ - rate_bytes0_) / rate.states;
+  rate.bytes_per_second = (bytes_ - rate_bytes0_) / seconds;
+  const std::string::size_type slash = path_.find_last_of('/');
+  rate.directory = slash == std::string::npos ? "." : path_.substr(0, std::max<size_t>(slash, 1));
+  struct statvfs fs {};
+  if (statvfs(rate.directory.c_str(), &fs) == 0) {
+    rate.free_bytes = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+  }
+  return rate;
+}
+
+std::string ByteSize(double bytes) {
+  const char* units[] = {"B", "kB", "MB", "GB", "TB", "PB"};
+  int u = 0;
+  while (bytes >= 999.5 && u < 5) {
+    bytes /= 1000.0;
+    ++u;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, u == 0 ? "%.0f %s" : "%.3g %s", bytes, units[u]);
+  return text;
+}
+
+namespace {
+
+std::string Duration(double seconds) {
+  char text[32];
+  if (seconds < 90.0) {
+    std::snprintf(text, sizeof text, "%.0f s", seconds);
+  } else if (seconds < 5400.0) {
+    std::snprintf(text, sizeof text, "%.0f min", seconds / 60.0);
+  } else {
+    std::snprintf(text, sizeof text, "%.2g h", seconds / 3600.0);
+  }
+  return text;
+}
+
+}  // namespace
+
+RecordingReport DescribeRecordingRate(const RecordingRate& rate, long states_left) {
+  RecordingReport report;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "recording: %s per state, %s/s (measured over the first %ld states, %.1f s)",
+                ByteSize(rate.bytes_per_state).c_str(), ByteSize(rate.bytes_per_second).c_str(),
+                rate.states, rate.seconds);
+  report.info = text;
+  if (rate.free_bytes < 0.0) {
+    report.info += "; free space on " + rate.directory + " unknown";
+    return report;
+  }
+  report.info += "; " + ByteSize(rate.free_bytes) + " free on " + rate.directory;
+  const std::string advice = "publish_every:=N or max_step_rate:=R record less";
+  const double fill_seconds =
+      rate.bytes_per_second > 0.0 ? rate.free_bytes / rate.bytes_per_second : 1e300;
+  if (states_left >= 0) {
+    const double needed = rate.bytes_per_state * static_cast<double>(states_left);
+    if (needed > rate.free_bytes) {
+      std::snprintf(text, sizeof text,
+                    "the bag will fill the disk before the run ends: the %ld states left need "
+                    "about %s, %s free on %s (full in about %s at this rate); %s",
+                    states_left, ByteSize(needed).c_str(), ByteSize(rate.free_bytes).c_str(),
+                    rate.directory.c_str(), Duration(fill_seconds).c_str(), advice.c_str());
+      report.warning = text;
+    }
+  } else if (fill_seconds < 3600.0) {
+    std::snprintf(text, sizeof text, "at %s/s the bag fills the %s free on %s in about %s; %s",
+                  ByteSize(rate.bytes_per_second).c_str(), ByteSize(rate.free_bytes).c_str(),
+                  rate.directory.c_str(), Duration(fill_seconds).c_str(), advice.c_str());
+    report.warning = text;
+  }
+  return report;
 }
 
 std::string OsReason(int error, const std::string& path) {

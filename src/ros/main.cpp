@@ -5,12 +5,18 @@
 #include <ros/ros.h>
 
 #include <csignal>
+#include <cstdio>
 
 #include "ehd_capsule/lbm/openmp_wait.h"
 #include "ehd_capsule/ros/capsule_node.h"
 #include "ehd_capsule/ros/shutdown_request.h"
 
 int main(int argc, char** argv) {
+  // rosconsole writes with fprintf: to a pipe (scripts/run's tee, a CI log, `| grep`) stdout
+  // would be block-buffered and the progress lines would come all at once when the node exits.
+  // One line at a time, in a terminal and through a pipe alike.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  std::setvbuf(stderr, nullptr, _IOLBF, 0);
   ehd::RestartWithPassiveOpenMpWait(argv);  // lbm/openmp_wait.h
   // A file size limit (ulimit -f) would kill the process on the bag write that exceeds it; with
   // SIGXFSZ ignored the write fails instead and the node handles it like a full disk.

@@ -2,7 +2,10 @@
 
 #include <ros/ros.h>
 
+#include <algorithm>
 #include <charconv>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <sstream>
 #include <stdexcept>
@@ -102,7 +105,110 @@ std::vector<std::string> StartValueOverrides(double start_ca_e, double start_ca)
   return overrides;
 }
 
+std::map<std::string, std::string> CommandLineRemappings(const std::vector<std::string>& args) {
+  std::map<std::string, std::string> remappings;
+  for (const std::string& arg : args) {
+    const size_t pos = arg.find(":=");
+    if (pos != std::string::npos && pos > 0) remappings[arg.substr(0, pos)] = arg.substr(pos + 2);
+  }
+  return remappings;
+}
+
+std::vector<std::string> UnrequestedParameters(
+    const std::vector<std::string>& server_names, const std::string& private_ns,
+    const std::map<std::string, std::string>& remappings) {
+  std::vector<std::string> names;
+  if (remappings.count("__log") > 0) return names;  // roslaunch: cleared by clear_params
+  const std::string prefix = private_ns + "/";
+  for (const std::string& full : server_names) {
+    if (full.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string name = full.substr(prefix.size());
+    if (name.empty() || name == "Ca_E" || name == "Ca" || name == "paused") continue;
+    if (remappings.count("_" + name) > 0) continue;  // given as _name:=value
+    names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  return names;
+}
+
+std::string ResolveNodePath(const std::string& param, const std::string& path,
+                            const std::string& working_directory, const std::string& process_cwd,
+                            bool under_roslaunch) {
+  const std::filesystem::path given(path);
+  if (given.is_absolute()) return given.lexically_normal().string();
+  std::string base = working_directory;
+  if (base.empty()) {
+    if (under_roslaunch) {
+      throw std::invalid_argument(
+          param + " '" + path + "' is relative, and roslaunch runs the node in ROS_HOME (" +
+          process_cwd +
+          "), not where it was started: give an absolute path, or ~working_directory (the "
+          "package's launch files pass $(env PWD))");
+    }
+    base = process_cwd;
+  }
+  if (!std::filesystem::path(base).is_absolute()) {
+    throw std::invalid_argument("~working_directory '" + base + "' must be an absolute path");
+  }
+  return (std::filesystem::path(base) / given).lexically_normal().string();
+}
+
+namespace {
+
+// The process's own command line as name:=value remappings (ros::init took them out of argv,
+// and ros::names keeps no _name or __name remapping).
+std::map<std::string, std::string> OwnRemappings() {
+  std::ifstream cmdline("/proc/self/cmdline", std::ios::binary);
+  std::vector<std::string> args;
+  for (std::string arg; std::getline(cmdline, arg, '\0');) args.push_back(arg);
+  return CommandLineRemappings(args);
+}
+
+std::string ParameterText(XmlRpc::XmlRpcValue& v) {
+  switch (v.getType()) {
+    case XmlRpc::XmlRpcValue::TypeDouble: {
+      char text[32];
+      const auto end = std::to_chars(text, text + sizeof text, static_cast<double>(v));
+      return std::string(text, end.ptr);
+    }
+    case XmlRpc::XmlRpcValue::TypeInt:
+      return std::to_string(static_cast<int>(v));
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      return static_cast<bool>(v) ? "true" : "false";
+    case XmlRpc::XmlRpcValue::TypeString:
+      return static_cast<std::string>(v);
+    case XmlRpc::XmlRpcValue::TypeStruct:
+      return v.size() == 0 ? "{}" : "{...}";
+    default:
+      return "(" + v.toXml() + ")";
+  }
+}
+
+// Under rosrun, the private parameters left on the server by an earlier run (or set with
+// rosparam) are taken as if given: say which, with their values.
+void WarnUnrequestedParameters(const ros::NodeHandle& pnh) {
+  std::vector<std::string> server_names;
+  if (!ros::param::getParamNames(server_names)) return;
+  const std::vector<std::string> names =
+      UnrequestedParameters(server_names, pnh.getNamespace(), OwnRemappings());
+  if (names.empty()) return;
+  std::string list;
+  for (const std::string& name : names) {
+    XmlRpc::XmlRpcValue value;
+    if (!pnh.getParam(name, value)) continue;
+    list += (list.empty() ? "~" : ", ~") + name + " = " + ParameterText(value);
+  }
+  ROS_WARN(
+      "ehd_capsule: taken from the parameter server, not from this command line (left by an "
+      "earlier run or set with rosparam; `rosparam delete %s` clears them): %s",
+      pnh.getNamespace().c_str(), list.c_str());
+}
+
+}  // namespace
+
 NodeParameters ReadNodeParameters(ros::NodeHandle& pnh, const ros::NodeHandle& nh) {
+  WarnUnrequestedParameters(pnh);
   NodeParameters p;
   pnh.param<std::string>("scene", p.scene, "shear_field");
   int steps = 0;
@@ -142,7 +248,19 @@ NodeParameters ReadNodeParameters(ros::NodeHandle& pnh, const ros::NodeHandle& n
   // operator who is not there) and pauses a live one.
   pnh.param<std::string>("on_record_error", p.on_record_error, p.batch() ? "stop" : "pause");
   nh.param("/use_sim_time", p.use_sim_time, false);
+  pnh.param<std::string>("working_directory", p.working_directory, "");
   ValidateNodeParameters(p);
+  // Relative paths: against the caller's directory, never silently under ROS_HOME.
+  std::error_code ec;
+  const std::string cwd = std::filesystem::current_path(ec).string();
+  const bool under_roslaunch = OwnRemappings().count("__log") > 0;
+  const bool scene_is_path =
+      p.scene.find('/') != std::string::npos ||
+      (p.scene.size() > 5 && p.scene.compare(p.scene.size() - 5, 5, ".yaml") == 0);
+  if (scene_is_path) {
+    p.scene = ResolveNodePath("~scene", p.scene, p.working_directory, cwd, under_roslaunch);
+  }
+  if (p.record) p.bag = ResolveNodePath("~bag", p.bag, p.working_directory, cwd, under_roslaunch);
 
   XmlRpc::XmlRpcValue set;
   if (pnh.getParam("set", set)) p.overrides = SceneOverrides(set);
@@ -157,6 +275,7 @@ NodeParameters ReadNodeParameters(ros::NodeHandle& pnh, const ros::NodeHandle& n
   pnh.setParam("scene", p.scene);
   pnh.setParam("publish_every", p.publish_every);
   pnh.setParam("frame_id", p.frame_id);
+  if (p.record) pnh.setParam("bag", p.bag);
   return p;
 }
 

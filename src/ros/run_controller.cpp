@@ -8,26 +8,54 @@
 
 namespace ehd::ros_node {
 
-std::string FormatProgressLine(const SimulationState& s, const std::string& time_unit,
-                               double steps_per_second) {
-  char line[256];
-  std::snprintf(line, sizeof line,
-                "step %ld  t = %.4g %s  D_xy = %.5f  theta/pi = %.4f  area drift = %.2e  %.0f "
-                "steps/s",
-                s.step, s.time, time_unit.c_str(), s.dxy, s.inclination / M_PI, s.area_drift,
-                steps_per_second);
-  return line;
+ShownMeasures MeasuresOf(const Scene& scene) {
+  ShownMeasures m;
+  if (scene.dimension == 3) {
+    m.shear_plane = scene.has_shear();
+    m.field_axis = scene.electric_field || !scene.has_shear();
+    m.volume = true;
+  }
+  return m;
 }
 
-std::string FormatSummary(const std::string& how, const SimulationState& s,
+namespace {
+
+// The measures of m, "D_xy = 0.12346", ..., joined by separator.
+std::string FormatMeasures(const SimulationState& s, const ShownMeasures& m,
+                           const char* separator) {
+  std::string text;
+  char item[64];
+  const auto add = [&](const char* format, double value) {
+    std::snprintf(item, sizeof item, format, value);
+    text += (text.empty() ? "" : separator) + std::string(item);
+  };
+  if (m.shear_plane) {
+    add("D_xy = %.5f", s.dxy);
+    add("theta/pi = %.4f", s.inclination / M_PI);
+  }
+  if (m.field_axis) add("D_z = %.5f", s.d_field);
+  add(m.volume ? "volume drift = %.2e" : "area drift = %.2e", s.area_drift);
+  return text;
+}
+
+}  // namespace
+
+std::string FormatProgressLine(const SimulationState& s, const ShownMeasures& m,
+                               const std::string& time_unit, double steps_per_second) {
+  char head[96], tail[48];
+  std::snprintf(head, sizeof head, "step %ld  t = %.4g %s  ", s.step, s.time, time_unit.c_str());
+  std::snprintf(tail, sizeof tail, "  %.0f steps/s", steps_per_second);
+  return head + FormatMeasures(s, m, "  ") + tail;
+}
+
+std::string FormatSummary(const std::string& how, const SimulationState& s, const ShownMeasures& m,
                           const std::string& time_unit, double wall_seconds) {
-  char line[320];
-  std::snprintf(line, sizeof line,
-                "summary: %s after %ld steps, t = %.4g %s: D_xy = %.5f, theta/pi = %.4f, area "
-                "drift = %.2e; %.1f s wall (%.0f steps/s)",
-                how.c_str(), s.step, s.time, time_unit.c_str(), s.dxy, s.inclination / M_PI,
-                s.area_drift, wall_seconds, wall_seconds > 0 ? s.step / wall_seconds : 0.0);
-  return line;
+  char head[160], tail[64];
+  std::snprintf(head, sizeof head, "summary: %s after %ld steps, t = %.4g %s: ", how.c_str(),
+                s.step, s.time, time_unit.c_str());
+  std::snprintf(tail, sizeof tail, "; %.1f s wall (%.0f steps/s)", wall_seconds,
+                wall_seconds > 0 ? s.step / wall_seconds : 0.0);
+  return head + FormatMeasures(s, m, ", ") + tail;
 }
 
 std::string LargeRunWarning(const Scene& scene, const LatticeUnits& units) {
@@ -283,7 +311,10 @@ void RunController::StepOnce() {
   }
   pub_.CountStep();
   const SimulationState& s = sim_.state();
-  if (s.step % publish_every_ == 0) pub_.PublishState();
+  if (s.step % publish_every_ == 0) {
+    pub_.PublishState();
+    if (recorder_) ReportRecordingRate();
+  }
   if (params_.steps > 0 && s.step >= params_.steps) {
     run_state_ = RunState::kFinished;
     end_reason_ = "reached " + std::to_string(s.step) + " steps";
@@ -299,6 +330,18 @@ void RunController::StepOnce() {
   }
 }
 
+void RunController::ReportRecordingRate() {
+  const std::optional<RecordingRate> rate = recorder_->SampleRate(ros::WallTime::now().toSec());
+  if (!rate) return;
+  long states_left = -1;  // a live run or ~until_steady: the end is not known
+  if (params_.steps > 0) {
+    states_left = std::max(0L, (params_.steps - sim_.state().step) / publish_every_);
+  }
+  const RecordingReport report = DescribeRecordingRate(*rate, states_left);
+  ROS_INFO("ehd_capsule: %s", report.info.c_str());
+  if (!report.warning.empty()) ROS_WARN("ehd_capsule: %s", report.warning.c_str());
+}
+
 void RunController::PrintProgress(bool force) {
   if (params_.progress_period <= 0.0 && !force) return;
   const ros::WallTime now = ros::WallTime::now();
@@ -306,7 +349,8 @@ void RunController::PrintProgress(bool force) {
   const SimulationState& s = sim_.state();
   const double wall = (now - last_progress_).toSec();
   const double rate = wall > 0.0 ? (s.step - last_progress_step_) / wall : 0.0;
-  ROS_INFO("ehd_capsule: %s", FormatProgressLine(s, sim_.units().time_unit, rate).c_str());
+  ROS_INFO("ehd_capsule: %s",
+           FormatProgressLine(s, MeasuresOf(sim_.scene()), sim_.units().time_unit, rate).c_str());
   last_progress_ = now;
   last_progress_step_ = s.step;
 }
@@ -357,7 +401,8 @@ int RunController::Run() {
   PublishDiagnostics(true);
   const double wall = (ros::WallTime::now() - run_start_).toSec();
   ROS_INFO("ehd_capsule: %s",
-           FormatSummary(how, sim_.state(), sim_.units().time_unit, wall).c_str());
+           FormatSummary(how, sim_.state(), MeasuresOf(sim_.scene()), sim_.units().time_unit, wall)
+               .c_str());
   if (!pub_.field_is_current()) pub_.PublishField(true);  // the final state's layer
   if (recorder_) recorder_->Close();
   // Exit status: 1 if the simulation stopped on an error (even when the node was shut down

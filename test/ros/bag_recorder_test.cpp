@@ -14,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 
 namespace ehd::ros_node {
@@ -177,6 +178,81 @@ TEST_F(BagRecorderTest, WriteFailureStopsTheRecordingWithTheOsReason) {
   }  // destroyed without an exception
   EXPECT_TRUE(fs::exists(path + ".active")) << "the failed bag keeps its .active name";
   EXPECT_FALSE(fs::exists(path));
+}
+
+// The measured cost of a recording: bytes per state within a few % of the closed file, per
+// second over the wall time given, free space of the bag's filesystem; once per bag.
+TEST_F(BagRecorderTest, SampleRateMeasuresTheBagOnceFromItsFirstSecond) {
+  const std::string path = Path("rate.bag");
+  BagRecorder rec = Make(path);
+  rec.Open();
+  EXPECT_FALSE(rec.SampleRate(100.0));  // no state yet
+  const std::string payload(10000, 'x');
+  double t = 100.0;
+  std::optional<RecordingRate> rate;
+  for (int i = 0; i < 400 && !rate; ++i) {
+    rec.Write("state", Text(payload), ros::Time(1.0 + i));
+    rec.Write("shape", Text(payload.substr(0, 2000)), ros::Time(1.0 + i));
+    rec.CountState();
+    rate = rec.SampleRate(t);
+    t += 1.0 / 256;  // 256 states per second (exact in binary)
+  }
+  ASSERT_TRUE(rate);
+  EXPECT_EQ(rate->states, 256);
+  EXPECT_NEAR(rate->seconds, 1.0, 1e-9);
+  EXPECT_NEAR(rate->bytes_per_state, 12000.0, 300.0);
+  EXPECT_NEAR(rate->bytes_per_second, 256 * rate->bytes_per_state, 1e-6 * rate->bytes_per_second);
+  EXPECT_EQ(rate->directory, dir_.string());
+  EXPECT_GT(rate->free_bytes, 0.0);
+  EXPECT_FALSE(rec.SampleRate(t + 10.0));  // once
+  const long states = rec.states();
+  rec.Close();
+  const double file_per_state = static_cast<double>(fs::file_size(path)) / states;
+  EXPECT_NEAR(rate->bytes_per_state, file_per_state, 0.03 * file_per_state);
+  // A new bag (a reset) is measured again.
+  rec.OpenNext();
+  rec.Write("state", Text(payload), ros::Time(1.0));
+  rec.CountState();
+  EXPECT_FALSE(rec.SampleRate(200.0));
+  rec.Write("state", Text(payload), ros::Time(2.0));
+  rec.CountState();
+  EXPECT_TRUE(rec.SampleRate(201.5));
+}
+
+TEST(RecordingRate, ReportsTheCostAndWarnsBeforeTheDiskFills) {
+  RecordingRate rate;
+  rate.bytes_per_state = 16100;
+  rate.bytes_per_second = 98.4e6;
+  rate.seconds = 1.0;
+  rate.states = 6100;
+  rate.free_bytes = 78.3e9;
+  rate.directory = "/tmp";
+  RecordingReport r = DescribeRecordingRate(rate, 1000);  // 16 MB left: fits
+  EXPECT_EQ(r.info,
+            "recording: 16.1 kB per state, 98.4 MB/s (measured over the first 6100 states, 1.0 "
+            "s); 78.3 GB free on /tmp");
+  EXPECT_EQ(r.warning, "");
+  r = DescribeRecordingRate(rate, 10000000);  // 161 GB left: does not fit
+  EXPECT_NE(r.warning.find("the bag will fill the disk before the run ends: the 10000000 states "
+                           "left need about 161 GB, 78.3 GB free on /tmp (full in about 13 min"),
+            std::string::npos)
+      << r.warning;
+  r = DescribeRecordingRate(rate, -1);  // a live run: full within the hour
+  EXPECT_NE(r.warning.find("at 98.4 MB/s the bag fills the 78.3 GB free on /tmp in about 13 min"),
+            std::string::npos)
+      << r.warning;
+  rate.bytes_per_second = 1e6;  // 22 h to fill: no warning
+  EXPECT_EQ(DescribeRecordingRate(rate, -1).warning, "");
+  rate.free_bytes = -1;
+  EXPECT_NE(DescribeRecordingRate(rate, -1).info.find("free space on /tmp unknown"),
+            std::string::npos);
+}
+
+TEST(RecordingRate, ByteSize) {
+  EXPECT_EQ(ByteSize(57), "57 B");
+  EXPECT_EQ(ByteSize(16100), "16.1 kB");
+  EXPECT_EQ(ByteSize(227000), "227 kB");
+  EXPECT_EQ(ByteSize(1.18e9), "1.18 GB");
 }
 
 TEST(OsReason, NamesTheLimitOrTheFullDisk) {

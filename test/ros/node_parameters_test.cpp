@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace ehd::ros_node {
 namespace {
@@ -94,6 +96,50 @@ TEST(NodeParameters, StartValuesBelowZeroKeepTheScenes) {
   EXPECT_EQ(StartValueOverrides(0.3, -1), std::vector<std::string>{"Ca_E=0.3"});
   const std::vector<std::string> both = {"Ca_E=0", "Ca=0.05"};
   EXPECT_EQ(StartValueOverrides(0.0, 0.05), both);
+}
+
+TEST(NodeParameters, UnrequestedParametersAreThoseNotOnTheCommandLine) {
+  const std::vector<std::string> server = {"/ehd_capsule/steps",   "/ehd_capsule/set/Ca_E",
+                                           "/ehd_capsule/set/N",   "/ehd_capsule/scene",
+                                           "/ehd_capsule/Ca_E",    "/ehd_capsule/paused",
+                                           "/other/ehd_capsule/x", "/ehd_capsule_2/steps",
+                                           "/use_sim_time",        "/ehd_capsule/progress_period"};
+  // rosrun ehd_capsule ehd_capsule_node _scene:=shear_field _progress_period:=0 state:=s
+  const std::map<std::string, std::string> rosrun = CommandLineRemappings(
+      {"/x/ehd_capsule_node", "_scene:=shear_field", "_progress_period:=0", "state:=s", ":=y"});
+  EXPECT_EQ(rosrun, (std::map<std::string, std::string>{
+                        {"_scene", "shear_field"}, {"_progress_period", "0"}, {"state", "s"}}));
+  EXPECT_EQ(UnrequestedParameters(server, "/ehd_capsule", rosrun),
+            (std::vector<std::string>{"set/Ca_E", "set/N", "steps"}));
+  EXPECT_TRUE(UnrequestedParameters({"/ehd_capsule/Ca", "/ehd_capsule/scene"}, "/ehd_capsule",
+                                    {{"_scene", "x"}})
+                  .empty());
+  // roslaunch (it passes __log:=...) clears the namespace first: nothing to report.
+  EXPECT_TRUE(
+      UnrequestedParameters(server, "/ehd_capsule", {{"__name", "ehd_capsule"}, {"__log", "f"}})
+          .empty());
+}
+
+TEST(NodeParameters, RelativePathsAreTakenFromTheCallersDirectory) {
+  // roslaunch: against ~working_directory (the launch files pass $(optenv PWD)), not ROS_HOME.
+  EXPECT_EQ(ResolveNodePath("~bag", "runs/a.bag", "/home/u/work", "/home/u/.ros", true),
+            "/home/u/work/runs/a.bag");
+  EXPECT_EQ(ResolveNodePath("~bag", "./a.bag", "/home/u/work/", "/home/u/.ros", true),
+            "/home/u/work/a.bag");
+  EXPECT_EQ(ResolveNodePath("~bag", "/data/a.bag", "/home/u/work", "/home/u/.ros", true),
+            "/data/a.bag");
+  // rosrun: the node runs in the caller's directory.
+  EXPECT_EQ(ResolveNodePath("~bag", "../a.bag", "", "/home/u/work", false), "/home/u/a.bag");
+  // roslaunch without ~working_directory: refused, naming the parameter and ROS_HOME.
+  try {
+    ResolveNodePath("~bag", "a.bag", "", "/home/u/.ros", true);
+    FAIL() << "a relative ~bag under roslaunch without ~working_directory was accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("~bag 'a.bag' is relative"), std::string::npos) << what;
+    EXPECT_NE(what.find("ROS_HOME (/home/u/.ros)"), std::string::npos) << what;
+  }
+  EXPECT_THROW(ResolveNodePath("~bag", "a.bag", "work", "/", false), std::invalid_argument);
 }
 
 }  // namespace

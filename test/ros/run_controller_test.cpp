@@ -20,16 +20,40 @@ SimulationState State() {
 }
 
 TEST(RunController, ProgressLine) {
-  EXPECT_EQ(FormatProgressLine(State(), "1/k", 499.6),
+  EXPECT_EQ(FormatProgressLine(State(), ShownMeasures{}, "1/k", 499.6),
             "step 120  t = 0.3 1/k  D_xy = 0.12346  theta/pi = 0.2500  area drift = 1.00e-05  "
             "500 steps/s");
 }
 
 TEST(RunController, Summary) {
-  EXPECT_EQ(FormatSummary("ran", State(), "1/k", 2.0),
+  EXPECT_EQ(FormatSummary("ran", State(), ShownMeasures{}, "1/k", 2.0),
             "summary: ran after 120 steps, t = 0.3 1/k: D_xy = 0.12346, theta/pi = 0.2500, area "
             "drift = 1.00e-05; 2.0 s wall (60 steps/s)");
-  EXPECT_NE(FormatSummary("ran", State(), "1/k", 0.0).find("(0 steps/s)"), std::string::npos);
+  EXPECT_NE(FormatSummary("ran", State(), ShownMeasures{}, "1/k", 0.0).find("(0 steps/s)"),
+            std::string::npos);
+}
+
+// 3D: D_z along the field where it means something, D_xy and theta only with shear, the volume's
+// drift (electric_drop_3d printed D_xy = 0.00000 theta/pi = 0.5000 area drift = ...).
+TEST(RunController, ThreeDimensionalMeasures) {
+  Scene scene;
+  EXPECT_TRUE(MeasuresOf(scene).shear_plane);  // 2D: as before
+  EXPECT_FALSE(MeasuresOf(scene).field_axis);
+  scene.dimension = 3;
+  scene.flow = FlowKind::kNone;
+  scene.electric_field = true;  // electric_drop_3d
+  SimulationState s = State();
+  s.d_field = 0.0123456;
+  EXPECT_EQ(FormatProgressLine(s, MeasuresOf(scene), "mu a/gamma", 10.0),
+            "step 120  t = 0.3 mu a/gamma  D_z = 0.01235  volume drift = 1.00e-05  10 steps/s");
+  scene.flow = FlowKind::kShear;  // sphere_shear_field
+  EXPECT_EQ(FormatSummary("ran", s, MeasuresOf(scene), "1/k", 2.0),
+            "summary: ran after 120 steps, t = 0.3 1/k: D_xy = 0.12346, theta/pi = 0.2500, D_z = "
+            "0.01235, volume drift = 1.00e-05; 2.0 s wall (60 steps/s)");
+  scene.electric_field = false;  // sphere_shear
+  EXPECT_EQ(FormatProgressLine(s, MeasuresOf(scene), "1/k", 10.0),
+            "step 120  t = 0.3 1/k  D_xy = 0.12346  theta/pi = 0.2500  volume drift = 1.00e-05  "
+            "10 steps/s");
 }
 
 TEST(RunController, LargeRunWarning) {

@@ -5,6 +5,7 @@
 
 #include <xmlrpcpp/XmlRpcValue.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -45,7 +46,10 @@ struct NodeParameters {
   double progress_period = 5.0;             // wall seconds between progress lines, 0: none
   double throttled_rate = 20.0;             // ~state_throttled, Hz of wall time
   bool record = false;
-  std::string bag = "ehd_capsule.bag";
+  std::string bag = "ehd_capsule.bag";  // absolute once read (ResolveNodePath)
+  // ~working_directory: what a relative ~bag or scene path is resolved against (the launch files
+  // pass the directory roslaunch was started in); empty: the node's own (rosrun: the caller's).
+  std::string working_directory;
   bool overwrite = false;
   // ~on_record_error: "pause" or "stop"; default (ReadNodeParameters): stop for a batch run
   // (~steps or ~until_steady), pause for a live one.
@@ -73,8 +77,32 @@ std::vector<std::string> SceneOverrides(XmlRpc::XmlRpcValue& set);
 // overrides appended after ~set's.
 std::vector<std::string> StartValueOverrides(double start_ca_e, double start_ca);
 
+// The name:=value arguments of a command line (_name:=value, __log:=..., topic remappings) as
+// name -> value.
+std::map<std::string, std::string> CommandLineRemappings(const std::vector<std::string>& args);
+// The private parameters a start takes from the parameter server without being told to: of
+// server_names (the server's parameter names, as ros::param::getParamNames gives them), those in
+// private_ns ("/ehd_capsule") that remappings (CommandLineRemappings of the node's command line)
+// do not give as _name:=value, relative ("steps", "set/N"), sorted.
+// dynamic_reconfigure's Ca_E, Ca and paused are left out (a start overwrites them with the
+// scene's values). Empty when the node runs under roslaunch (a __log remapping): the launch files
+// clear the private namespace first (clear_params), so what is there is the launch's.
+std::vector<std::string> UnrequestedParameters(
+    const std::vector<std::string>& server_names, const std::string& private_ns,
+    const std::map<std::string, std::string>& remappings);
+
+// A path parameter (~bag, a scene path) as an absolute, normalized path: a relative one against
+// working_directory (~working_directory), or, when that is empty, against process_cwd, the
+// node's own directory, unless the node runs under roslaunch (which starts it in ROS_HOME, not
+// where the user is): then a relative path is refused with std::invalid_argument naming param.
+std::string ResolveNodePath(const std::string& param, const std::string& path,
+                            const std::string& working_directory, const std::string& process_cwd,
+                            bool under_roslaunch);
+
 // Reads every private parameter (and /use_sim_time), validates them and writes the effective
-// scene, publish_every and frame_id back (so `rosparam get` shows what runs).
+// scene, publish_every and frame_id back (so `rosparam get` shows what runs). Warns naming each
+// parameter (and its value) of UnrequestedParameters: under rosrun, one left by an earlier run
+// or set with rosparam would change the run silently.
 NodeParameters ReadNodeParameters(ros::NodeHandle& private_nh, const ros::NodeHandle& nh);
 
 }  // namespace ehd::ros_node

@@ -25,12 +25,24 @@
 
 namespace ehd::ros_node {
 
+// The measures that mean something for a scene, in the progress line and the summary: D_xy
+// and theta in the shear plane (2D; 3D with shear), D_z along the field axis z (3D with a field,
+// or without shear: electric_drop_3d's D_xy is 0 and its theta 0.5 whatever its shape), and the
+// drift of the enclosed area (2D) or volume (3D).
+struct ShownMeasures {
+  bool shear_plane = true;
+  bool field_axis = false;
+  bool volume = false;
+};
+ShownMeasures MeasuresOf(const Scene& scene);
+
 // "step 120  t = 0.3 1/k  D_xy = 0.12345  theta/pi = 0.2500  area drift = 1.00e-05  500 steps/s"
-std::string FormatProgressLine(const SimulationState& s, const std::string& time_unit,
-                               double steps_per_second);
+// (3D: "... D_z = 0.01234  volume drift = ...")
+std::string FormatProgressLine(const SimulationState& s, const ShownMeasures& m,
+                               const std::string& time_unit, double steps_per_second);
 // "summary: ran after 120 steps, t = 0.3 1/k: D_xy = ..., theta/pi = ..., area drift = ...;
 // 1.0 s wall (120 steps/s)"; how: "ran", "stopped on an error", ...
-std::string FormatSummary(const std::string& how, const SimulationState& s,
+std::string FormatSummary(const std::string& how, const SimulationState& s, const ShownMeasures& m,
                           const std::string& time_unit, double wall_seconds);
 // The memory and time estimate of a scene too large to watch live; empty when it is not.
 std::string LargeRunWarning(const Scene& scene, const LatticeUnits& units);
@@ -69,6 +81,7 @@ class RunController {
   void Fail(const std::string& reason);
   void OnRecordError(const std::string& reason);
   void PrintProgress(bool force);
+  void ReportRecordingRate();  // once per bag, from its first second (BagRecorder::SampleRate)
   void PublishDiagnostics(bool force);
   RunStatus Status() const;
 
