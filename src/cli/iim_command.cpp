@@ -240,13 +240,8 @@ int RunIim3D(const std::vector<std::string>& args) {
   return refused > 0 ? 1 : 0;
 }
 
-int RunIim(const std::vector<std::string>& args) {
-  for (std::size_t i = 0; i + 1 < args.size(); ++i) {
-    if (args[i] == "--dim") {
-      if (args[i + 1] == "3") return RunIim3D(args);
-      if (args[i + 1] != "2") throw UsageError("--dim: expected 2 or 3, got '" + args[i + 1] + "'");
-    }
-  }
+// The options of ehd_sim iim --dim 2.
+struct Iim2DOptions {
   std::string example = "1", method = "iim";
   double sigma_minus = -1, sigma_plus = -1;
   std::vector<int> grids = {40, 80, 160, 320};
@@ -258,84 +253,135 @@ int RunIim(const std::vector<std::string>& args) {
   double marker_spacing = -1.0;   // in h; -1: the example's default (about 2 h)
   double control_spacing = -1.0;  // FastIimOptions::min_control_spacing_h; -1: its default
   double wavelength = -1.0;       // FastIimOptions::fourier_wavelength_h; -1: its default
+};
+
+Iim2DOptions ParseIim2D(const std::vector<std::string>& args) {
+  Iim2DOptions o;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--example") {
-      example = OptionValue(args, i);
+      o.example = OptionValue(args, i);
     } else if (a == "--dim") {
       OptionValue(args, i);  // 2 (3 is dispatched above)
     } else if (a == "--method") {
-      method = OptionValue(args, i);
-      if (method != "iim" && method != "cfm") {
-        throw UsageError("--method: expected iim or cfm, got '" + method + "'");
+      o.method = OptionValue(args, i);
+      if (o.method != "iim" && o.method != "cfm") {
+        throw UsageError("--method: expected iim or cfm, got '" + o.method + "'");
       }
     } else if (a == "--sigma-minus") {
-      sigma_minus = ParseDouble(a, OptionValue(args, i));
-      if (!(sigma_minus > 0)) throw UsageError("--sigma-minus must be > 0");
+      o.sigma_minus = ParseDouble(a, OptionValue(args, i));
+      if (!(o.sigma_minus > 0)) throw UsageError("--sigma-minus must be > 0");
     } else if (a == "--sigma-plus") {
-      sigma_plus = ParseDouble(a, OptionValue(args, i));
-      if (!(sigma_plus > 0)) throw UsageError("--sigma-plus must be > 0");
+      o.sigma_plus = ParseDouble(a, OptionValue(args, i));
+      if (!(o.sigma_plus > 0)) throw UsageError("--sigma-plus must be > 0");
     } else if (a == "--grids") {
-      grids = ParseIntList(a, OptionValue(args, i));
-      for (int n : grids)
+      o.grids = ParseIntList(a, OptionValue(args, i));
+      for (int n : o.grids)
         if (n < 8) throw UsageError("--grids: each N must be >= 8, got " + std::to_string(n));
     } else if (a == "--markers") {
-      markers = static_cast<int>(ParseLong(a, OptionValue(args, i)));
-      if (markers < 8) throw UsageError("--markers must be >= 8");
+      o.markers = static_cast<int>(ParseLong(a, OptionValue(args, i)));
+      if (o.markers < 8) throw UsageError("--markers must be >= 8");
     } else if (a == "--deferred-correction") {
-      deferred = 1;
+      o.deferred = 1;
     } else if (a == "--no-deferred-correction") {
-      deferred = 0;
+      o.deferred = 0;
     } else if (a == "--marker-spacing") {
-      marker_spacing = ParseDouble(a, OptionValue(args, i));
-      if (!(marker_spacing > 0.0)) throw UsageError("--marker-spacing must be > 0");
+      o.marker_spacing = ParseDouble(a, OptionValue(args, i));
+      if (!(o.marker_spacing > 0.0)) throw UsageError("--marker-spacing must be > 0");
     } else if (a == "--gmres-tolerance") {
-      gmres_tolerance = ParseDouble(a, OptionValue(args, i));
-      if (!(gmres_tolerance > 0.0 && gmres_tolerance < 1.0)) {
+      o.gmres_tolerance = ParseDouble(a, OptionValue(args, i));
+      if (!(o.gmres_tolerance > 0.0 && o.gmres_tolerance < 1.0)) {
         throw UsageError("--gmres-tolerance must be in (0, 1)");
       }
     } else if (a == "--fourier-wavelength") {
-      wavelength = ParseDouble(a, OptionValue(args, i));
-      if (!(wavelength >= 0.0)) throw UsageError("--fourier-wavelength must be >= 0");
+      o.wavelength = ParseDouble(a, OptionValue(args, i));
+      if (!(o.wavelength >= 0.0)) throw UsageError("--fourier-wavelength must be >= 0");
     } else if (a == "--control-spacing") {
-      control_spacing = ParseDouble(a, OptionValue(args, i));
-      if (!(control_spacing > 0.0)) throw UsageError("--control-spacing must be > 0");
+      o.control_spacing = ParseDouble(a, OptionValue(args, i));
+      if (!(o.control_spacing > 0.0)) throw UsageError("--control-spacing must be > 0");
     } else if (a == "--no-checks") {
-      checks = false;
+      o.checks = false;
     } else if (a == "--csv") {
-      csv = true;
+      o.csv = true;
     } else {
       throw UsageError("unknown option '" + a + "'");
     }
   }
+  return o;
+}
+
+// One grid of the table: the example solved by the chosen method (twice, the second timed);
+// phi the grid solution, *jump_error the error of [phi_n] (iim; -1 for cfm). Throws SolverError
+// when the solver refuses.
+InterfaceSolveReport SolveOneGrid(const Iim2DOptions& o, const InterfaceExample& e,
+                                  const Grid2D& grid, const ClosedCurve& curve,
+                                  const InterfaceProblem& problem, std::vector<double>& phi,
+                                  double* jump_error) {
+  InterfaceSolveReport report;
+  *jump_error = -1.0;
+  if (o.method == "iim") {
+    FastIimOptions options;
+    if (o.deferred >= 0) options.deferred_correction = o.deferred == 1;
+    if (o.gmres_tolerance > 0.0) options.gmres.tolerance = o.gmres_tolerance;
+    if (o.control_spacing > 0.0) options.min_control_spacing_h = o.control_spacing;
+    if (o.wavelength >= 0.0) options.fourier_wavelength_h = o.wavelength;
+    if (!o.checks) {
+      options.max_curvature_h = options.max_marker_oscillation = options.verify_min_ratio =
+          std::numeric_limits<double>::infinity();
+    }
+    FastIimSolver solver(grid, PoissonBoundaries{}, options);
+    std::vector<double> g;
+    report = solver.Solve(curve, problem, g, phi);
+    // Time a second, identical solve from a cold guess (plans and buffers already made).
+    g.clear();
+    report = solver.Solve(curve, problem, g, phi);
+    *jump_error = JumpNormalDerivativeError(e, curve, g);
+  } else {
+    CorrectionFunctionOptions options;
+    if (o.deferred >= 0) options.deferred_correction = o.deferred == 1;
+    CorrectionFunctionSolver solver(grid, PoissonBoundaries{}, options);
+    report = solver.Solve(curve, problem, phi);
+    report = solver.Solve(curve, problem, phi);
+  }
+  return report;
+}
+
+int RunIim(const std::vector<std::string>& args) {
+  for (std::size_t i = 0; i + 1 < args.size(); ++i) {
+    if (args[i] == "--dim") {
+      if (args[i + 1] == "3") return RunIim3D(args);
+      if (args[i + 1] != "2") throw UsageError("--dim: expected 2 or 3, got '" + args[i + 1] + "'");
+    }
+  }
+  const Iim2DOptions o = ParseIim2D(args);
   InterfaceExample e;
   try {
-    e = MakeInterfaceExample(example);
-    if (sigma_minus > 0 || sigma_plus > 0) {
-      e = MakeInterfaceExample(example, sigma_minus > 0 ? sigma_minus : e.sigma_minus,
-                               sigma_plus > 0 ? sigma_plus : e.sigma_plus);
+    e = MakeInterfaceExample(o.example);
+    if (o.sigma_minus > 0 || o.sigma_plus > 0) {
+      e = MakeInterfaceExample(o.example, o.sigma_minus > 0 ? o.sigma_minus : e.sigma_minus,
+                               o.sigma_plus > 0 ? o.sigma_plus : e.sigma_plus);
     }
   } catch (const std::invalid_argument& err) {
     throw UsageError(std::string("--example: ") + err.what());
   }
-  if (csv) {
+  if (o.csv) {
     std::cout << "example,method,N,markers,sigma_minus,sigma_plus,linf_error,order,iterations,"
                  "solve_ms,estimated_error,jump_error,status\n";
   } else {
     std::printf("example %s: %s\nmethod %s, sigma- = %g, sigma+ = %g\n", e.name.c_str(),
-                e.description.c_str(), method.c_str(), e.sigma_minus, e.sigma_plus);
+                e.description.c_str(), o.method.c_str(), e.sigma_minus, e.sigma_plus);
     std::printf("%6s %8s %12s %9s %7s %6s %10s %10s %10s\n", "N", "markers", "Linf error", "ratio",
                 "order", "iter", "ms/solve", "est. error", "G error");
   }
   double previous = 0.0;
   int previous_n = 0;
   int refused = 0;
-  for (int n : grids) {
+  for (int n : o.grids) {
     const Grid2D grid = e.MakeGrid(n);
-    int m = markers > 0 ? markers : e.DefaultMarkers(n);
-    if (marker_spacing > 0.0) {
+    int m = o.markers > 0 ? o.markers : e.DefaultMarkers(n);
+    if (o.marker_spacing > 0.0) {
       // DefaultMarkers spaces markers about 2 h apart.
-      m = std::max(8, static_cast<int>(std::lround(e.DefaultMarkers(n) * 2.0 / marker_spacing)));
+      m = std::max(8, static_cast<int>(std::lround(e.DefaultMarkers(n) * 2.0 / o.marker_spacing)));
     }
     const ClosedCurve curve(e.Markers(m));
     const InterfaceProblem problem = SampleInterfaceProblem(e, grid, curve);
@@ -343,36 +389,13 @@ int RunIim(const std::vector<std::string>& args) {
     InterfaceSolveReport report;
     double jump_error = -1.0;  // of [phi_n] (iim only)
     try {
-      if (method == "iim") {
-        FastIimOptions options;
-        if (deferred >= 0) options.deferred_correction = deferred == 1;
-        if (gmres_tolerance > 0.0) options.gmres.tolerance = gmres_tolerance;
-        if (control_spacing > 0.0) options.min_control_spacing_h = control_spacing;
-        if (wavelength >= 0.0) options.fourier_wavelength_h = wavelength;
-        if (!checks) {
-          options.max_curvature_h = options.max_marker_oscillation = options.verify_min_ratio =
-              std::numeric_limits<double>::infinity();
-        }
-        FastIimSolver solver(grid, PoissonBoundaries{}, options);
-        std::vector<double> g;
-        report = solver.Solve(curve, problem, g, phi);
-        // Time a second, identical solve from a cold guess (plans and buffers already made).
-        g.clear();
-        report = solver.Solve(curve, problem, g, phi);
-        jump_error = JumpNormalDerivativeError(e, curve, g);
-      } else {
-        CorrectionFunctionOptions options;
-        if (deferred >= 0) options.deferred_correction = deferred == 1;
-        CorrectionFunctionSolver solver(grid, PoissonBoundaries{}, options);
-        report = solver.Solve(curve, problem, phi);
-        report = solver.Solve(curve, problem, phi);
-      }
+      report = SolveOneGrid(o, e, grid, curve, problem, phi, &jump_error);
     } catch (const SolverError& err) {
       // The solver refused (unresolved curve, failed verification): say so in the row and go
       // on with the next grid; the exit status is 1 at the end.
       ++refused;
-      if (csv) {
-        std::printf("%s,%s,%d,%d,%g,%g,,,,,,,refused: %s\n", e.name.c_str(), method.c_str(), n, m,
+      if (o.csv) {
+        std::printf("%s,%s,%d,%d,%g,%g,,,,,,,refused: %s\n", e.name.c_str(), o.method.c_str(), n, m,
                     e.sigma_minus, e.sigma_plus, err.what());
       } else {
         std::printf("%6d %8d   refused: %s\n", n, m, err.what());
@@ -393,9 +416,9 @@ int RunIim(const std::vector<std::string>& args) {
     if (jump_error >= 0) std::snprintf(jump_text, sizeof jump_text, "%.2e", jump_error);
     const double order =
         previous > 0 ? std::log(ratio) / std::log(static_cast<double>(n) / previous_n) : 0.0;
-    if (csv) {
-      std::printf("%s,%s,%d,%d,%g,%g,%.6e,%s,%d,%.3f,%s,%s,ok\n", e.name.c_str(), method.c_str(), n,
-                  m, e.sigma_minus, e.sigma_plus, err,
+    if (o.csv) {
+      std::printf("%s,%s,%d,%d,%g,%g,%.6e,%s,%d,%.3f,%s,%s,ok\n", e.name.c_str(), o.method.c_str(),
+                  n, m, e.sigma_minus, e.sigma_plus, err,
                   previous > 0 ? std::to_string(order).c_str() : "", report.iterations,
                   report.solve_ms, estimate.c_str(), jump_error >= 0 ? jump_text : "");
     } else if (previous > 0) {
