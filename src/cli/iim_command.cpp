@@ -64,10 +64,60 @@ Errors3D MeasureErrors3D(const InterfaceExample3D& e, const Grid3D& grid, const 
   return out;
 }
 
+// The normal-derivative operator on its own: phi_n^- from the exact grid potential and the exact
+// [phi_n], against the exact phi_n^- (max over the vertices).
+double NormalDerivativeFitError(const InterfaceExample3D& e, const Grid3D& grid,
+                                const TriangleMesh& mesh, FastIimSolver3D& solver) {
+  double fit_error = 0;
+  std::vector<double> exact_phi(grid.size()), exact_g(mesh.vertex_count()), dn;
+  for (int k = 0; k < grid.nz; ++k)
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i) {
+        const std::size_t c = grid.index(i, j, k);
+        const Eigen::Vector3d p(grid.x(i), grid.y(j), grid.z(k));
+        exact_phi[c] = solver.classification().side[c] > 0 ? e.phi_plus(p) : e.phi_minus(p);
+      }
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    const Eigen::Vector3d x = mesh.vertices().col(v);
+    exact_g[v] = (e.grad_plus(x) - e.grad_minus(x)).dot(e.normal(x));
+  }
+  solver.EvaluateNormalDerivative(exact_phi, exact_g, dn);
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    const Eigen::Vector3d x = mesh.vertices().col(v);
+    fit_error = std::max(fit_error, std::abs(dn[v] - e.grad_minus(x).dot(e.normal(x))));
+  }
+  return fit_error;
+}
+
+// The time of one Poisson solve of the grid's size (the mean of 3 after a first one), for the
+// cost ratio of an interface solve.
+double PoissonSolveMs(const Grid3D& grid, const PoissonBoundaries3D& boundaries) {
+  FastPoissonSolver3D poisson(grid, boundaries);
+  std::vector<double> rhs(grid.size(), 1.0), out;
+  poisson.Solve(rhs, out);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int r = 0; r < 3; ++r) poisson.Solve(rhs, out);
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
+         3;
+}
+
+// A second solve with the surface moved by 0.01 h along x, from g (the previous solution).
+InterfaceSolveReport ResolveMoved(const InterfaceExample3D& e, const Grid3D& grid,
+                                  const TriangleMesh& mesh, FastIimSolver3D& solver,
+                                  std::vector<double>& g) {
+  Eigen::Matrix3Xd moved = mesh.vertices();
+  moved.row(0).array() += 0.01 * grid.h;
+  TriangleMesh shifted = mesh;
+  shifted.SetVertices(moved);
+  const InterfaceProblem3D p2 =
+      SampleInterfaceProblem3D(e, grid, shifted, ClassifyNodes(grid, shifted));
+  std::vector<double> phi2;
+  return solver.Solve(shifted, p2, g, phi2);
+}
+
 int RunIim3D(const std::vector<std::string>& args) {
   std::string example = "sphere_field";
   double sigma_minus = 1, sigma_plus = 1, eps_minus = 3.5, eps_plus = 1;
-  bool sigma_given = false;
   std::vector<int> grids = {32, 48, 64, 96};
   bool csv = false, warm = false;
   int mesh_level = 0;  // 0: the coarsest with edges <= 1.5 h
@@ -86,7 +136,6 @@ int RunIim3D(const std::vector<std::string>& args) {
        : a == "--sigma-plus" ? sigma_plus
        : a == "--eps-minus"  ? eps_minus
                              : eps_plus) = value;
-      sigma_given = sigma_given || a.rfind("--sigma", 0) == 0;
     } else if (a == "--grids") {
       grids = ParseIntList(a, OptionValue(args, i));
       for (int n : grids)
@@ -116,7 +165,6 @@ int RunIim3D(const std::vector<std::string>& args) {
       throw UsageError("unknown option '" + a + "'");
     }
   }
-  (void)sigma_given;
   InterfaceExample3D e;
   try {
     e = MakeInterfaceExample3D(example, sigma_minus, sigma_plus);
@@ -165,50 +213,14 @@ int RunIim3D(const std::vector<std::string>& args) {
     const double disagreement = solver.fit_disagreement();
     const int harmonic_degree = solver.harmonic_degree();
     const double flux_error = solver.flux_balance_error();
-    // The normal-derivative operator on its own: phi_n^- from the exact grid potential and the
-    // exact [phi_n], against the exact phi_n^-.
-    double fit_error = 0;
-    {
-      std::vector<double> exact_phi(grid.size()), exact_g(mesh.vertex_count()), dn;
-      for (int k = 0; k < grid.nz; ++k)
-        for (int j = 0; j < grid.ny; ++j)
-          for (int i = 0; i < grid.nx; ++i) {
-            const std::size_t c = grid.index(i, j, k);
-            const Eigen::Vector3d p(grid.x(i), grid.y(j), grid.z(k));
-            exact_phi[c] = solver.classification().side[c] > 0 ? e.phi_plus(p) : e.phi_minus(p);
-          }
-      for (int v = 0; v < mesh.vertex_count(); ++v) {
-        const Eigen::Vector3d x = mesh.vertices().col(v);
-        exact_g[v] = (e.grad_plus(x) - e.grad_minus(x)).dot(e.normal(x));
-      }
-      solver.EvaluateNormalDerivative(exact_phi, exact_g, dn);
-      for (int v = 0; v < mesh.vertex_count(); ++v) {
-        const Eigen::Vector3d x = mesh.vertices().col(v);
-        fit_error = std::max(fit_error, std::abs(dn[v] - e.grad_minus(x).dot(e.normal(x))));
-      }
-    }
+    const double fit_error = NormalDerivativeFitError(e, grid, mesh, solver);
     const Errors3D err = MeasureErrors3D(e, grid, mesh, solver, g, phi, eps_minus, eps_plus);
-    // One Poisson solve of the same size, for the cost ratio.
-    FastPoissonSolver3D poisson(grid, e.boundaries);
-    std::vector<double> rhs(grid.size(), 1.0), out;
-    poisson.Solve(rhs, out);
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int r = 0; r < 3; ++r) poisson.Solve(rhs, out);
-    const double poisson_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
-        3;
+    const double poisson_ms = PoissonSolveMs(grid, e.boundaries);
     // Warm start: the surface moved by 0.01 h, G of the solve above as the guess.
     int warm_iterations = -1;
     double warm_ms = 0;
     if (warm) {
-      Eigen::Matrix3Xd moved = mesh.vertices();
-      moved.row(0).array() += 0.01 * grid.h;
-      TriangleMesh shifted = mesh;
-      shifted.SetVertices(moved);
-      const InterfaceProblem3D p2 =
-          SampleInterfaceProblem3D(e, grid, shifted, ClassifyNodes(grid, shifted));
-      std::vector<double> phi2;
-      const InterfaceSolveReport r2 = solver.Solve(shifted, p2, g, phi2);
+      const InterfaceSolveReport r2 = ResolveMoved(e, grid, mesh, solver, g);
       warm_iterations = r2.iterations;
       warm_ms = r2.solve_ms;
     }
