@@ -250,18 +250,13 @@ std::vector<double> SurfaceColourQuantity(const Simulation& sim, SurfaceColour c
   return {};
 }
 
-}  // namespace
-
-visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
-                                                const StateMessageSettings& settings,
-                                                const ros::Time& stamp) {
+// The membrane as a closed line strip (3D: its cross-section in the shear plane).
+visualization_msgs::Marker MembraneMarker(const Simulation& sim,
+                                          const StateMessageSettings& settings,
+                                          const ros::Time& stamp) {
   const SimulationState& s = sim.state();
   const double a = LatticeRadius(sim);
-  const double fscale = LatticeForceDensityScale(sim);
-  visualization_msgs::MarkerArray array;
-
   const bool three_d = s.dimension == 3;
-  // Membrane as a closed line strip (3D: its cross-section in the shear plane).
   visualization_msgs::Marker membrane =
       BaseMarker(settings, stamp, "membrane", 0, visualization_msgs::Marker::LINE_STRIP);
   membrane.scale.x = 0.02;
@@ -280,44 +275,56 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
       membrane.points.push_back(ToPoint(s.markers(0, kk) / a, s.markers(1, kk) / a));
     }
   }
-  array.markers.push_back(membrane);
-  if (three_d) {
-    // The surface as a shaded triangle list, coloured by ~surface_colour (dark blue: lowest,
-    // yellow: highest): the normal electric traction where there is a field (pulled inwards
-    // most to outwards most), the membrane tension, or the vertex speed; else one colour.
-    visualization_msgs::Marker surface =
-        BaseMarker(settings, stamp, "surface", 5, visualization_msgs::Marker::TRIANGLE_LIST);
-    surface.scale.x = surface.scale.y = surface.scale.z = 1.0;
-    surface.color = Color(0.55f, 0.7f, 0.95f, 1.0f);
-    const std::vector<double> quantity = SurfaceColourQuantity(sim, settings.surface_colour);
-    const bool coloured = !quantity.empty();
-    double lo = 0, hi = 0;
-    if (coloured) {
-      // The ramp spans the 2nd to the 98th percentile, so a few extreme vertices do not leave
-      // the rest of the surface in one colour.
-      std::vector<double> sorted = quantity;
-      std::sort(sorted.begin(), sorted.end());
-      lo = sorted[static_cast<std::size_t>(0.02 * (sorted.size() - 1))];
-      hi = sorted[static_cast<std::size_t>(0.98 * (sorted.size() - 1))];
-    }
-    for (const auto& t : sim.triangles()) {
-      for (int c = 0; c < 3; ++c) {
-        const int v = t[c];
-        surface.points.push_back(
-            ToPoint(s.markers(0, v) / a, s.markers(1, v) / a, s.markers(2, v) / a));
-        if (coloured) {
-          // Opaque: rviz does not sort a list's triangles, so a translucent surface shows its
-          // back half through the front in patches.
-          std_msgs::ColorRGBA colour = Ramp(hi > lo ? (quantity[v] - lo) / (hi - lo) : 0.5);
-          colour.a = 1.0f;
-          surface.colors.push_back(colour);
-        }
+  return membrane;
+}
+
+// 3D: the surface as a shaded triangle list, coloured by ~surface_colour (dark blue: lowest,
+// yellow: highest): the normal electric traction where there is a field (pulled inwards most to
+// outwards most), the membrane tension, or the vertex speed; else one colour.
+visualization_msgs::Marker SurfaceMarker(const Simulation& sim,
+                                         const StateMessageSettings& settings,
+                                         const ros::Time& stamp) {
+  const SimulationState& s = sim.state();
+  const double a = LatticeRadius(sim);
+  visualization_msgs::Marker surface =
+      BaseMarker(settings, stamp, "surface", 5, visualization_msgs::Marker::TRIANGLE_LIST);
+  surface.scale.x = surface.scale.y = surface.scale.z = 1.0;
+  surface.color = Color(0.55f, 0.7f, 0.95f, 1.0f);
+  const std::vector<double> quantity = SurfaceColourQuantity(sim, settings.surface_colour);
+  const bool coloured = !quantity.empty();
+  double lo = 0, hi = 0;
+  if (coloured) {
+    // The ramp spans the 2nd to the 98th percentile, so a few extreme vertices do not leave
+    // the rest of the surface in one colour.
+    std::vector<double> sorted = quantity;
+    std::sort(sorted.begin(), sorted.end());
+    lo = sorted[static_cast<std::size_t>(0.02 * (sorted.size() - 1))];
+    hi = sorted[static_cast<std::size_t>(0.98 * (sorted.size() - 1))];
+  }
+  for (const auto& t : sim.triangles()) {
+    for (int c = 0; c < 3; ++c) {
+      const int v = t[c];
+      surface.points.push_back(
+          ToPoint(s.markers(0, v) / a, s.markers(1, v) / a, s.markers(2, v) / a));
+      if (coloured) {
+        // Opaque: rviz does not sort a list's triangles, so a translucent surface shows its
+        // back half through the front in patches.
+        std_msgs::ColorRGBA colour = Ramp(hi > lo ? (quantity[v] - lo) / (hi - lo) : 0.5);
+        colour.a = 1.0f;
+        surface.colors.push_back(colour);
       }
     }
-    array.markers.push_back(surface);
   }
+  return surface;
+}
 
-  // Electric force arrows: one LINE_LIST segment per marker (a single marker keeps it cheap).
+// Electric force arrows: one LINE_LIST segment per point (a single marker keeps it cheap).
+visualization_msgs::Marker ForceArrows(const Simulation& sim, const StateMessageSettings& settings,
+                                       const ros::Time& stamp) {
+  const SimulationState& s = sim.state();
+  const double a = LatticeRadius(sim);
+  const double fscale = LatticeForceDensityScale(sim);
+  const bool three_d = s.dimension == 3;
   visualization_msgs::Marker forces =
       BaseMarker(settings, stamp, "electric_force", 1, visualization_msgs::Marker::LINE_LIST);
   forces.scale.x = 0.01;
@@ -362,39 +369,46 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
     }
   }
   if (forces.points.empty()) forces.action = visualization_msgs::Marker::DELETE;
-  array.markers.push_back(forces);
+  return forces;
+}
 
-  // Optional velocity arrows on a coarse grid, in units of the wall speed k L (or of the max).
-  if (settings.velocity_arrows) {
-    visualization_msgs::Marker vel =
-        BaseMarker(settings, stamp, "velocity", 2, visualization_msgs::Marker::LINE_LIST);
-    vel.scale.x = 0.01;
-    vel.color = Color(0.3f, 0.3f, 0.3f, 0.8f);
-    const ShearPlane g = PlaneOf(sim);
-    const auto& ux = sim.ux();
-    const auto& uy = sim.uy();
-    double umax = 0.0;
-    for (int j = 0; j < g.ny; ++j) {
-      for (int i = 0; i < g.nx; ++i) {
-        umax = std::max(umax, std::hypot(ux[g.Index(i, j)], uy[g.Index(i, j)]));
-      }
+// Velocity arrows on a coarse grid, in units of the largest speed.
+visualization_msgs::Marker VelocityArrows(const Simulation& sim,
+                                          const StateMessageSettings& settings,
+                                          const ros::Time& stamp) {
+  const double a = LatticeRadius(sim);
+  visualization_msgs::Marker vel =
+      BaseMarker(settings, stamp, "velocity", 2, visualization_msgs::Marker::LINE_LIST);
+  vel.scale.x = 0.01;
+  vel.color = Color(0.3f, 0.3f, 0.3f, 0.8f);
+  const ShearPlane g = PlaneOf(sim);
+  const auto& ux = sim.ux();
+  const auto& uy = sim.uy();
+  double umax = 0.0;
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      umax = std::max(umax, std::hypot(ux[g.Index(i, j)], uy[g.Index(i, j)]));
     }
-    const double cell = settings.velocity_stride * g.h / a;  // arrow of the fastest = one cell
-    for (int j = settings.velocity_stride / 2; j < g.ny; j += settings.velocity_stride) {
-      for (int i = settings.velocity_stride / 2; i < g.nx; i += settings.velocity_stride) {
-        const std::size_t n = g.Index(i, j);
-        const double x = g.X(i) / a, y = g.Y(j) / a;
-        const double sx = umax > 0.0 ? ux[n] / umax * cell : 0.0;
-        const double sy = umax > 0.0 ? uy[n] / umax * cell : 0.0;
-        vel.points.push_back(ToPoint(x, y));
-        vel.points.push_back(ToPoint(x + sx, y + sy));
-      }
-    }
-    array.markers.push_back(vel);
   }
+  const double cell = settings.velocity_stride * g.h / a;  // arrow of the fastest = one cell
+  for (int j = settings.velocity_stride / 2; j < g.ny; j += settings.velocity_stride) {
+    for (int i = settings.velocity_stride / 2; i < g.nx; i += settings.velocity_stride) {
+      const std::size_t n = g.Index(i, j);
+      const double x = g.X(i) / a, y = g.Y(j) / a;
+      const double sx = umax > 0.0 ? ux[n] / umax * cell : 0.0;
+      const double sy = umax > 0.0 ? uy[n] / umax * cell : 0.0;
+      vel.points.push_back(ToPoint(x, y));
+      vel.points.push_back(ToPoint(x + sx, y + sy));
+    }
+  }
+  return vel;
+}
 
-  // The walls: y = +-L moving (shear), or the whole closed box (3D: their traces in the shear
-  // plane).
+// The walls: y = +-L moving (shear), or the whole closed box (3D: their traces in the shear
+// plane).
+visualization_msgs::Marker WallsMarker(const Simulation& sim, const StateMessageSettings& settings,
+                                       const ros::Time& stamp) {
+  const double a = LatticeRadius(sim);
   const ShearPlane plane = PlaneOf(sim);
   const double half = 0.5 * plane.ny * plane.h / a;
   const double half_x = 0.5 * plane.nx * plane.h / a;
@@ -412,9 +426,16 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
       walls.points.push_back(ToPoint(x, half));
     }
   }
-  array.markers.push_back(walls);
+  return walls;
+}
 
-  // Text overlay above the domain, two short lines (the step count grows to 7 digits).
+// The text overlay above the domain, two short lines (the step count grows to 7 digits).
+visualization_msgs::Marker StatusText(const Simulation& sim, const StateMessageSettings& settings,
+                                      const ros::Time& stamp) {
+  const SimulationState& s = sim.state();
+  const bool three_d = s.dimension == 3;
+  const ShearPlane plane = PlaneOf(sim);
+  const double half = 0.5 * plane.ny * plane.h / LatticeRadius(sim);
   visualization_msgs::Marker text =
       BaseMarker(settings, stamp, "status", 3, visualization_msgs::Marker::TEXT_VIEW_FACING);
   text.pose.position = ToPoint(0.0, half + 0.45);
@@ -432,7 +453,21 @@ visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
                   s.step, s.time, s.dxy, s.inclination / M_PI, s.ca, s.ca_e);
   }
   text.text = line;
-  array.markers.push_back(text);
+  return text;
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray MakeMarkerArray(const Simulation& sim,
+                                                const StateMessageSettings& settings,
+                                                const ros::Time& stamp) {
+  visualization_msgs::MarkerArray array;
+  array.markers.push_back(MembraneMarker(sim, settings, stamp));
+  if (sim.state().dimension == 3) array.markers.push_back(SurfaceMarker(sim, settings, stamp));
+  array.markers.push_back(ForceArrows(sim, settings, stamp));
+  if (settings.velocity_arrows) array.markers.push_back(VelocityArrows(sim, settings, stamp));
+  array.markers.push_back(WallsMarker(sim, settings, stamp));
+  array.markers.push_back(StatusText(sim, settings, stamp));
   return array;
 }
 
