@@ -190,6 +190,7 @@ void WriteSummaryJson(const RunOptions& o, const Simulation* sim, const RunEnd& 
                                                      {"surface_flow", s.surface_flow},
                                                      {"volume_corrected", s.volume_corrected},
                                                      {"tt_phase", s.tt_phase},
+                                                     {"stresslet_xy", s.stresslet_xy},
                                                      {"ca", s.ca},
                                                      {"ca_e", s.ca_e},
                                                      {"max_mach", s.max_mach},

@@ -32,6 +32,12 @@ struct SimulationState {
   // leak is area_drift - volume_corrected.
   double volume_corrected = 0;
   double tt_phase = 0;  // unwrapped angle of material point 0 about the centroid (rad)
+  // With shear: the xy component of the body's stresslet (particle stress dipole)
+  // S = -sum_k sym((x_k - x_c) F_k) over the forces F_k the membrane spreads into the fluid,
+  // over mu k a^3 (3D) or mu k a^2 per unit depth (2D); a rigid sphere in unbounded shear has
+  // 10 pi / 3, a rigid cylinder 2 pi (Batchelor 1970; the immersed boundary's effective radius
+  // shows in it as (a_eff / a)^D). 0 without shear.
+  double stresslet_xy = 0;
   double ca = 0, ca_e = 0;
   int gmres_iterations = 0;
   double gmres_residual = 0;
