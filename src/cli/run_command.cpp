@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "command.h"
+#include "ehd_capsule/coupling/shown_measures.h"
 #include "ehd_capsule/coupling/simulation.h"
 #include "ehd_capsule/coupling/steady_state.h"
 #include "ehd_capsule/geometry/triangle_mesh.h"
@@ -382,9 +383,10 @@ int RunScene(const std::vector<std::string>& args) {
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf(
-        "%sstep %ld  t = %.4g  D_xy = %.5f  theta/pi = %.4f  area drift = %.2e  Mach = %.3g%s  "
+        "%sstep %ld  t = %.4g  %s  Mach = %.3g%s  "
         "(%.1f steps/s)\n",
-        prefix, s.step, s.time, s.dxy, s.inclination / M_PI, s.area_drift, s.max_mach,
+        prefix, s.step, s.time, FormatMeasures(s, MeasuresOf(sim.scene()), "  ").c_str(),
+        s.max_mach,
         sim.has_electric_field() ? ("  GMRES " + std::to_string(s.gmres_iterations)).c_str() : "",
         wall > 0 ? (s.step - first_step) / wall : 0.0);
     std::fflush(stdout);

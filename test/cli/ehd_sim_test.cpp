@@ -62,6 +62,23 @@ TEST(EhdSim, UnknownSubcommandAndOptionFail) {
 // `eforce --dim 3`: the 3D force per vertex converges (order >= 1.8 from N = 48 to 64 against
 // N = 96), the net force vanishes (symmetry) and the traction approaches the free-space one
 // (within 1 % at N = 64, the box's image dipoles included). About 3 s.
+// The progress lines show what means something for the scene (coupling/shown_measures.h): a 3D
+// drop in a field along z without shear has D_z and the volume drift, not D_xy = 0 and
+// theta/pi = 0.5; a 2D capsule in shear D_xy, theta and the area drift.
+TEST(EhdSim, ProgressLinesShowTheScenesMeasures) {
+  const Result drop = RunSim("run electric_drop_3d --steps 2");
+  ASSERT_EQ(drop.status, 0) << drop.output;
+  EXPECT_NE(drop.output.find("final: step 2"), std::string::npos) << drop.output;
+  EXPECT_NE(drop.output.find("D_z = "), std::string::npos) << drop.output;
+  EXPECT_NE(drop.output.find("volume drift = "), std::string::npos) << drop.output;
+  EXPECT_EQ(drop.output.find("D_xy = "), std::string::npos) << drop.output;
+  const Result capsule = RunSim("run shear_field --steps 2");
+  ASSERT_EQ(capsule.status, 0) << capsule.output;
+  EXPECT_NE(capsule.output.find("D_xy = "), std::string::npos) << capsule.output;
+  EXPECT_NE(capsule.output.find("area drift = "), std::string::npos) << capsule.output;
+  EXPECT_EQ(capsule.output.find("D_z = "), std::string::npos) << capsule.output;
+}
+
 TEST(EhdSim, ThreeDimensionalForceConverges) {
   const Result r = RunSim("eforce --dim 3");
   ASSERT_EQ(r.status, 0) << r.output;

@@ -17,6 +17,7 @@
 
 #include "ehd_capsule/Advance.h"
 #include "ehd_capsule/SimulationConfig.h"
+#include "ehd_capsule/coupling/shown_measures.h"
 #include "ehd_capsule/coupling/simulation.h"
 #include "ehd_capsule/coupling/steady_state.h"
 #include "ehd_capsule/ros/bag_recorder.h"
@@ -25,16 +26,9 @@
 
 namespace ehd::ros_node {
 
-// The measures that mean something for a scene, in the progress line and the summary: D_xy
-// and theta in the shear plane (2D; 3D with shear), D_z along the field axis z (3D with a field,
-// or without shear: electric_drop_3d's D_xy is 0 and its theta 0.5 whatever its shape), and the
-// drift of the enclosed area (2D) or volume (3D).
-struct ShownMeasures {
-  bool shear_plane = true;
-  bool field_axis = false;
-  bool volume = false;
-};
-ShownMeasures MeasuresOf(const Scene& scene);
+// The measures shown: coupling/shown_measures.h (shared with ehd_sim run).
+using ehd::MeasuresOf;
+using ehd::ShownMeasures;
 
 // "step 120  t = 0.3 1/k  D_xy = 0.12345  theta/pi = 0.2500  area drift = 1.00e-05  500 steps/s"
 // (3D: "... D_z = 0.01234  volume drift = ...")
