@@ -10,8 +10,18 @@ export EHD_SKIP_SETUP=1
 export ROS_MASTER_URI=http://localhost:11397
 export ROS_HOSTNAME=localhost
 fail=0
+# The master of the previous run may still be shutting down (slower on a loaded machine): wait
+# until nothing listens on the port, or the next roslaunch fails with "Address already in use".
+wait_for_free_port() {
+  for _ in $(seq 100); do
+    (exec 3<>/dev/tcp/localhost/11397) 2>/dev/null || return 0
+    sleep 0.2
+  done
+  echo "FAIL: port 11397 still in use after 20 s"; fail=1
+}
 check() {
   local expect=$1; shift
+  wait_for_free_port
   scripts/run "$@" >/tmp/ehd_exit_codes.log 2>&1
   local got=$?
   if [ "$got" != "$expect" ]; then
@@ -29,6 +39,7 @@ check 1 steps:=10 surface_colour:=bogus  # an invalid node parameter
 # A batch run whose bag cannot be written (a 300 kB file size limit for a full disk) ends with
 # status 1 (on_record_error stop, the default with steps) instead of waiting paused forever.
 bag=$(mktemp -u /tmp/ehd_exit_codes_XXXXXX.bag)
+wait_for_free_port
 timeout 120 bash -c 'ulimit -f 300; exec scripts/run "$@"' scripts/run steps:=1000000 record:=true \
   bag:="$bag" set:="{N: 32, M: 32}" progress_period:=0 >/tmp/ehd_exit_codes.log 2>&1
 got=$?
