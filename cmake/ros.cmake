@@ -61,7 +61,8 @@ if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
     get_filename_component(test_name ${test_source} NAME_WE)
     set(test_target ros_${test_name})
     add_executable(${test_target} ${test_source})
-    target_link_libraries(${test_target} PRIVATE ehd_ros_node GTest::gtest GTest::gtest_main)
+    target_link_libraries(${test_target} PRIVATE ehd_ros_node ehd_test_support GTest::gtest
+                                                 GTest::gtest_main)
     target_compile_options(${test_target} PRIVATE ${EHD_WARNINGS} ${EHD_CORE_OPT})
     set_target_properties(${test_target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${EHD_BIN_DIR}/test)
     add_test(NAME ${test_target} COMMAND ${test_target}

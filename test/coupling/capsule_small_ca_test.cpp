@@ -14,31 +14,25 @@
 #include <string>
 
 #include "ehd_capsule/coupling/simulation.h"
+#include "support/tiny_scene.h"
 
 namespace ehd {
 namespace {
 
-const char* kCapsule = R"(
-name: small_ca_capsule
-Ca: 0.01
-Re: 0.2
-E_b: 0
-eta: 0
-V: 1
-N: 32
-M: 32
-geometry: {shape: circle, half_width: 4}
-membrane: capsule
-flow: shear
-numerics: {threads: 1}
-)";
+test::TinyScene SmallCaCapsule() {
+  return test::TinyScene(2)
+      .Name("small_ca_capsule")
+      .With("Ca", 0.01)
+      .With("Re", 0.2)
+      .With("numerics.threads", 1);
+}
 
 struct Steady {
   double dxy = 0, inclination = 0;
 };
 
 Steady SteadyShape(double ca, double eb) {
-  Simulation sim(ParseScene(kCapsule, {"Ca=" + std::to_string(ca), "E_b=" + std::to_string(eb)}));
+  Simulation sim(SmallCaCapsule().Build({"Ca=" + std::to_string(ca), "E_b=" + std::to_string(eb)}));
   // The shape relaxes at a rate ~ tau_0 / (mu a) ~ k D^2 / Ca >= k here: t = 6 / k is steady to
   // better than 1% (ehd_sim run with --until-steady on this grid).
   while (sim.state().time < 6.0) sim.Step();
@@ -95,7 +89,7 @@ namespace {
 TEST(CapsuleSmallCa, PrestressMakesTheResponseLinear) {
   auto steady_d = [](double ca, double* inclination) {
     Simulation sim(
-        ParseScene(kCapsule, {"Ca=" + std::to_string(ca), "prestress=1", "N=48", "M=48"}));
+        SmallCaCapsule().Build({"Ca=" + std::to_string(ca), "prestress=1", "N=48", "M=48"}));
     while (sim.state().time < 6.0) sim.Step();
     // A constant tension leaks area through the IB membrane at this coarse resolution (a = 6
     // cells): bounded here, 0.15% at a = 16 cells.

@@ -22,51 +22,22 @@
 
 #include "ehd_capsule/coupling/simulation.h"
 #include "ehd_capsule/scene/scene.h"
+#include "support/tiny_scene.h"
 
 namespace ehd {
 namespace {
 
-std::string DropScene(double sigma_r) {
-  return R"(
-name: ehd_drop
-Oh: 1
-V: 1
-Ca_E: 0.4
-sigma_r: )" +
-         std::to_string(sigma_r) +
-         R"(
-eps_r: 3.5
-N: 48
-M: 48
-geometry: {shape: circle, half_width: 4}
-membrane: drop
-flow: none
-electric: {}
-)";
+Scene DropScene(double sigma_r) {
+  return test::TinyScene(2).Name("ehd_drop").Drop().AtRest(1).Field(0.4, sigma_r).Grid(48).Build();
 }
 
-std::string CapsuleScene(double sigma_r, double ca_e) {
-  return R"(
-name: ehd_capsule
-Ca: 0.04
-Re: 0.05
-E_b: 0
-eta: 0
-V: 1
-Ca_E: )" +
-         std::to_string(ca_e) +
-         R"(
-sigma_r: )" +
-         std::to_string(sigma_r) +
-         R"(
-eps_r: 3.5
-N: 32
-M: 32
-geometry: {shape: circle, half_width: 4}
-membrane: capsule
-flow: shear
-electric: {}
-)";
+Scene CapsuleScene(double sigma_r, double ca_e) {
+  return test::TinyScene(2)
+      .Name("ehd_capsule")
+      .With("Ca", 0.04)
+      .With("Re", 0.05)
+      .Field(ca_e, sigma_r)
+      .Build();
 }
 
 // Vorticity du_y/dx - du_x/dy integrated over x > 0, y > 0, r < 0.8 a (central differences).
@@ -88,7 +59,7 @@ double FirstQuadrantCirculation(const Simulation& sim) {
 }
 
 double RunDropCirculation(double sigma_r) {
-  Simulation sim(ParseScene(DropScene(sigma_r)));
+  Simulation sim(DropScene(sigma_r));
   while (sim.state().time < 8.0) sim.Step();
   return FirstQuadrantCirculation(sim);
 }
@@ -100,7 +71,7 @@ TEST(EhdPhysics, InducedCirculationHasTheSignOfSigmaRMinusEpsR) {
 }
 
 double RunCapsuleInclination(double sigma_r, double ca_e) {
-  Simulation sim(ParseScene(CapsuleScene(sigma_r, ca_e)));
+  Simulation sim(CapsuleScene(sigma_r, ca_e));
   while (sim.state().time < 1.5) sim.Step();
   return sim.state().inclination;
 }

@@ -7,29 +7,25 @@
 
 #include "ehd_capsule/coupling/simulation.h"
 #include "ehd_capsule/scene/scene.h"
+#include "support/tiny_scene.h"
 
 namespace ehd {
 namespace {
 
 // Case A drop in shear and a strong field (the drop_shear_field set-up on a 48^2 grid): the
 // tank-treading flow carries the drop's markers, which are not material, toward its tips.
-std::string DropInShearAndField(double ratio) {
-  return R"(
-name: bunching_drop
-Ca: 0.3
-Re: 0.3
-V: 1
-Ca_E: 1
-sigma_r: 1.75
-eps_r: 3.5
-N: 48
-M: 48
-geometry: {shape: circle, half_width: 4}
-membrane: drop
-flow: shear
-electric: {}
-numerics: {electric_every: 100, electric_move_tolerance: 0.02, redistribute_markers: )" +
-         std::to_string(ratio) + "}\n";
+Scene DropInShearAndField(double ratio) {
+  return test::TinyScene(2)
+      .Name("bunching_drop")
+      .Drop()
+      .With("Ca", 0.3)
+      .With("Re", 0.3)
+      .Field(1)
+      .Grid(48)
+      .With("numerics.electric_every", 100)
+      .With("numerics.electric_move_tolerance", 0.02)
+      .With("numerics.redistribute_markers", ratio)
+      .Build();
 }
 
 double SpacingRatio(const Eigen::Matrix2Xd& x) {
@@ -49,8 +45,8 @@ TEST(MarkerRedistribution, KeepsADropsMarkersEvenlySpacedWithoutChangingItsShape
   // chord/arc difference). Re-spacing only moves markers along the curve, so D_xy, theta and the
   // enclosed area stay those of the plain run to a fraction of their changes (the field and the
   // flow are re-sampled, not altered).
-  Simulation plain(ParseScene(DropInShearAndField(0.0)));
-  Simulation even(ParseScene(DropInShearAndField(2.0)));
+  Simulation plain((DropInShearAndField(0.0)));
+  Simulation even((DropInShearAndField(2.0)));
   EXPECT_NE(even.Pipeline().find("re-spaced evenly"), std::string::npos) << even.Pipeline();
   double plain_ratio = 0.0, even_ratio = 0.0;
   while (even.state().time < 6.0) {
@@ -69,22 +65,10 @@ TEST(MarkerRedistribution, KeepsADropsMarkersEvenlySpacedWithoutChangingItsShape
 }
 
 TEST(MarkerRedistribution, OnlyForDropsAndOnlyAsARatioAboveOne) {
-  const std::string capsule = R"(
-name: c
-Ca: 0.1
-Re: 0.1
-E_b: 0
-eta: 0
-V: 1
-N: 48
-M: 48
-geometry: {shape: circle, half_width: 4}
-membrane: capsule
-flow: shear
-numerics: {redistribute_markers: 2}
-)";
+  const test::TinyScene capsule =
+      test::TinyScene(2).Name("c").Grid(48).With("numerics.redistribute_markers", 2);
   try {
-    ParseScene(capsule);
+    capsule.Build();
     FAIL() << "a capsule accepted numerics.redistribute_markers";
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find(
@@ -92,7 +76,7 @@ numerics: {redistribute_markers: 2}
               std::string::npos)
         << e.what();
   }
-  EXPECT_THROW(ParseScene(DropInShearAndField(0.5)), SceneError);
+  EXPECT_THROW((DropInShearAndField(0.5)), SceneError);
 }
 
 }  // namespace

@@ -8,37 +8,16 @@
 #include <cstdio>
 #include <string>
 
+#include "support/tiny_scene.h"
+
 namespace ehd {
 namespace {
 
-const char* kTinyCapsule = R"(
-name: tiny_capsule
-Ca: 0.1
-Re: 0.1
-E_b: 0
-eta: 0
-V: 1
-N: 48
-M: 48
-geometry: {shape: circle, half_width: 4}
-membrane: capsule
-flow: shear
-)";
-
-const char* kTinyDrop = R"(
-name: tiny_drop
-Oh: 1
-V: 1
-Ca_E: 0.2
-sigma_r: 4.75
-eps_r: 3.5
-N: 48
-M: 48
-geometry: {shape: circle, half_width: 4}
-membrane: drop
-flow: none
-electric: {}
-)";
+// A Hookean capsule in shear and a leaky-dielectric drop at rest, a = 4 cells on 48^2.
+test::TinyScene TinyCapsule() { return test::TinyScene(2).Grid(48); }
+test::TinyScene TinyDrop() {
+  return test::TinyScene(2).Name("tiny_drop").Drop().AtRest(1).Field(0.2, 4.75).Grid(48);
+}
 
 void RunUntil(Simulation& sim, double t) {
   while (sim.state().time < t) sim.Step();
@@ -46,7 +25,7 @@ void RunUntil(Simulation& sim, double t) {
 
 // A scene builds only what it needs.
 TEST(Simulation, PipelineHasOnlyWhatTheSceneNeeds) {
-  Simulation plain(ParseScene(kTinyCapsule));
+  Simulation plain(TinyCapsule().Build());
   EXPECT_FALSE(plain.has_electric_field());
   EXPECT_FALSE(plain.has_bending());
   EXPECT_FALSE(plain.has_viscosity_contrast());
@@ -59,7 +38,7 @@ TEST(Simulation, PipelineHasOnlyWhatTheSceneNeeds) {
   EXPECT_EQ(plain.state().electric_force.cols(), 0);
 
   Simulation full(
-      ParseScene(kTinyCapsule, {"E_b=0.01", "V=2", "Ca_E=0.1", "sigma_r=1.75", "eps_r=3.5"}));
+      TinyCapsule().Build({"E_b=0.01", "V=2", "Ca_E=0.1", "sigma_r=1.75", "eps_r=3.5"}));
   EXPECT_TRUE(full.has_electric_field());
   EXPECT_TRUE(full.has_bending());
   EXPECT_TRUE(full.has_viscosity_contrast());
@@ -75,7 +54,7 @@ TEST(Simulation, PipelineHasOnlyWhatTheSceneNeeds) {
 // D_xy = tanh(k t / 2) ~ k t / 2, theta = pi/4. Later the membrane resists (D below k t / 2).
 // The area is conserved by the incompressible flow (up to the IB leakage, small over this time).
 TEST(Simulation, CapsuleInShearDeformsFromZero) {
-  Simulation sim(ParseScene(kTinyCapsule));
+  Simulation sim(TinyCapsule().Build());
   EXPECT_LT(sim.state().dxy, 1e-6);
   RunUntil(sim, 0.05);
   const double t = sim.state().time;
@@ -101,7 +80,7 @@ TEST(Simulation, ElectricDropDeformsAsFengPredicts) {
   for (const double sigma_r : {4.75, 1.75}) {
     SCOPED_TRACE(sigma_r);
     Simulation sim(
-        ParseScene(kTinyDrop, {"sigma_r=" + std::to_string(sigma_r), "numerics.electric_every=4"}));
+        TinyDrop().Build({"sigma_r=" + std::to_string(sigma_r), "numerics.electric_every=4"}));
     RunUntil(sim, 6.0);
     const double fd = sigma_r * sigma_r + sigma_r + 1 - 3 * 3.5;
     const double d_feng = fd * 0.2 / (3 * (1 + sigma_r) * (1 + sigma_r));
@@ -117,7 +96,7 @@ TEST(Simulation, ElectricDropDeformsAsFengPredicts) {
 }
 
 TEST(Simulation, SetCaAndSetCaETakeEffectAtTheNextStep) {
-  Simulation sim(ParseScene(kTinyCapsule, {"electric={}", "Ca_E=0", "sigma_r=2", "eps_r=1"}));
+  Simulation sim(TinyCapsule().Build({"electric={}", "Ca_E=0", "sigma_r=2", "eps_r=1"}));
   EXPECT_DOUBLE_EQ(sim.state().ca_e, 0.0);
   sim.Step();
   EXPECT_EQ(sim.state().gmres_iterations, 0);  // field built but off
@@ -138,7 +117,7 @@ TEST(Simulation, SetCaAndSetCaETakeEffectAtTheNextStep) {
   EXPECT_THROW(sim.SetCaE(5.5), std::invalid_argument);
   EXPECT_THROW(sim.SetCa(-1), std::invalid_argument);
   // The scene's measured live limit (max_Ca) bounds SetCa and the scene's own Ca.
-  Simulation limited(ParseScene(kTinyCapsule, {"max_Ca=0.15"}));
+  Simulation limited(TinyCapsule().Build({"max_Ca=0.15"}));
   EXPECT_NO_THROW(limited.SetCa(0.15));
   try {
     limited.SetCa(0.2);
@@ -146,8 +125,8 @@ TEST(Simulation, SetCaAndSetCaETakeEffectAtTheNextStep) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("max_Ca"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(ParseScene(kTinyCapsule, {"max_Ca=0.05"}), SceneError);  // its Ca = 0.1
-  Simulation no_field(ParseScene(kTinyCapsule));
+  EXPECT_THROW(TinyCapsule().Build({"max_Ca=0.05"}), SceneError);  // its Ca = 0.1
+  Simulation no_field(TinyCapsule().Build());
   try {
     no_field.SetCaE(0.3);
     FAIL();
@@ -164,7 +143,7 @@ TEST(Simulation, MembraneLimitFailsEarlyWithAUsableSuggestion) {
   const std::vector<std::string> stiff = {"Ca=0.00005"};
   std::string what;
   try {
-    Simulation sim(ParseScene(kTinyCapsule, stiff));
+    Simulation sim(TinyCapsule().Build(stiff));
     FAIL() << "expected the membrane limit to be exceeded";
   } catch (const SceneError& e) {
     what = e.what();
@@ -175,12 +154,12 @@ TEST(Simulation, MembraneLimitFailsEarlyWithAUsableSuggestion) {
   EXPECT_GT(n, 1);
   std::vector<std::string> fixed = stiff;
   fixed.push_back("numerics.membrane_substeps=" + std::to_string(n));
-  EXPECT_NO_THROW(Simulation(ParseScene(kTinyCapsule, fixed)));
+  EXPECT_NO_THROW(Simulation(TinyCapsule().Build(fixed)));
 }
 
 // A capsule placed against the wall stops at once with an error naming the step and the wall.
 TEST(Simulation, WatchdogNamesStepAndQuantity) {
-  Simulation sim(ParseScene(kTinyCapsule, {"geometry.center_y=2.8"}));
+  Simulation sim(TinyCapsule().Build({"geometry.center_y=2.8"}));
   try {
     sim.Step();
     FAIL();
@@ -195,9 +174,9 @@ TEST(Simulation, WatchdogNamesStepAndQuantity) {
 // diagnostics), with the field re-solved every 3 steps, AB2 markers, a Kelvin-Voigt history and
 // a viscosity contrast (whose band indicator is rebuilt from the markers on restore).
 TEST(Simulation, CheckpointRestartIsBitForBit) {
-  const Scene scene = ParseScene(
-      kTinyCapsule, {"eta=1", "V=2", "Ca_E=0.2", "sigma_r=1.75", "eps_r=3.5",
-                     "numerics.electric_every=3", "numerics.integrator=adams_bashforth2"});
+  const Scene scene =
+      TinyCapsule().Build({"eta=1", "V=2", "Ca_E=0.2", "sigma_r=1.75", "eps_r=3.5",
+                           "numerics.electric_every=3", "numerics.integrator=adams_bashforth2"});
   const std::string path = ::testing::TempDir() + "/ehd_checkpoint_test.bin";
   Simulation a(scene);
   for (int i = 0; i < 7; ++i) a.Step();
@@ -217,13 +196,13 @@ TEST(Simulation, CheckpointRestartIsBitForBit) {
   EXPECT_EQ(a.state().tt_phase, b.state().tt_phase);
 
   // A checkpoint of another scene is refused.
-  Simulation other(ParseScene(kTinyCapsule));
+  Simulation other(TinyCapsule().Build());
   EXPECT_THROW(other.Restore(path), std::runtime_error);
   std::remove(path.c_str());
 }
 
 TEST(Simulation, ResetReturnsToTheInitialState) {
-  Simulation sim(ParseScene(kTinyCapsule));
+  Simulation sim(TinyCapsule().Build());
   const Eigen::Matrix3Xd x0 = sim.state().markers;
   for (int i = 0; i < 5; ++i) sim.Step();
   sim.Reset();
@@ -234,9 +213,8 @@ TEST(Simulation, ResetReturnsToTheInitialState) {
 // After Reset the run repeats a newly built one bit for bit, also with the stages that keep
 // history (viscosity contrast band, Kelvin-Voigt, AB2, electric warm start, tank-treading).
 TEST(Simulation, ResetRunRepeatsAFreshRun) {
-  const Scene scene =
-      ParseScene(kTinyCapsule, {"eta=1", "V=2", "Ca_E=0.2", "sigma_r=1.75", "eps_r=3.5",
-                                "numerics.integrator=adams_bashforth2"});
+  const Scene scene = TinyCapsule().Build({"eta=1", "V=2", "Ca_E=0.2", "sigma_r=1.75", "eps_r=3.5",
+                                           "numerics.integrator=adams_bashforth2"});
   Simulation fresh(scene), reset(scene);
   for (int i = 0; i < 9; ++i) reset.Step();
   reset.Reset();
@@ -252,7 +230,7 @@ TEST(Simulation, ResetRunRepeatsAFreshRun) {
 
 // The printed pipeline lists the stages in run order and names those not built.
 TEST(Simulation, PipelineListsStagesInRunOrder) {
-  Simulation full(ParseScene(kTinyCapsule, {"V=2", "Ca_E=0.2", "sigma_r=1.75", "eps_r=3.5"}));
+  Simulation full(TinyCapsule().Build({"V=2", "Ca_E=0.2", "sigma_r=1.75", "eps_r=3.5"}));
   const std::string p = full.Pipeline();
   const char* order[] = {"1. electric:", "2. membrane:", "3. spread:",     "4. viscosity:",
                          "5. fluid:",    "6. markers:",  "7. diagnostics:"};
@@ -264,7 +242,7 @@ TEST(Simulation, PipelineListsStagesInRunOrder) {
     at = found;
   }
   EXPECT_EQ(p.find("not built"), std::string::npos) << p;
-  Simulation plain(ParseScene(kTinyCapsule));
+  Simulation plain(TinyCapsule().Build());
   EXPECT_NE(plain.Pipeline().find("not built: electric (no field in the scene), viscosity (V = 1)"),
             std::string::npos)
       << plain.Pipeline();

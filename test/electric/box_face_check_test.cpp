@@ -15,6 +15,7 @@
 #include "ehd_capsule/electric/fast_iim_solver.h"
 #include "ehd_capsule/reference/correction_function_solver.h"
 #include "ehd_capsule/reference/interface_examples.h"
+#include "support/interface_case.h"
 
 namespace ehd {
 namespace {
@@ -32,18 +33,15 @@ double ErrorNearTheFace(double d, double sigma_plus, const Solve& solve, std::st
   const Grid2D g = e.MakeGrid(n);
   Eigen::Matrix2Xd x = e.Markers(e.DefaultMarkers(n));
   x.row(0).array() += g.x_max() - d * g.h - x.row(0).maxCoeff();
-  const ClosedCurve c(x);
+  const test::InterfaceCase c(e, n, x, kNeumannX);
   std::vector<double> phi;
   try {
-    solve(g, c, SampleInterfaceProblem(e, g, c, kNeumannX), phi);
+    solve(c.grid, c.curve, c.problem, phi);
   } catch (const SolverError& err) {
     if (refusal) *refusal = err.what();
     return -1.0;
   }
-  const std::vector<double> exact = ExactSolution(e, g, c);
-  double err = 0;
-  for (std::size_t k = 0; k < phi.size(); ++k) err = std::max(err, std::abs(phi[k] - exact[k]));
-  return err;
+  return c.MaxError(phi);
 }
 
 // Accurate 1.25 h from the face (within `factor` of the error 8 h away), refused by name at

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "ehd_capsule/reference/interface_examples_3d.h"
+#include "support/interface_case.h"
 
 namespace ehd {
 namespace {
@@ -169,23 +170,14 @@ TEST(FastIimSolver3D, SphereInAFieldThousandTimesMoreConductingInside) {
 // A shared example (reference/interface_examples_3d.h) on N^3: max errors of phi over the nodes
 // and of [phi_n] at the vertices.
 Errors SharedExample(const std::string& name, int n, double sigma_minus, double sigma_plus) {
-  const InterfaceExample3D e = MakeInterfaceExample3D(name, sigma_minus, sigma_plus);
-  const Grid3D grid = e.MakeGrid(n);
-  const TriangleMesh mesh = e.MeshFor(grid.h);
-  FastIimSolver3D solver(grid, e.boundaries);
-  const InterfaceProblem3D problem =
-      SampleInterfaceProblem3D(e, grid, mesh, ClassifyNodes(grid, mesh));
+  const test::InterfaceCase3D c(name, n, sigma_minus, sigma_plus);
+  FastIimSolver3D solver(c.grid, c.example.boundaries);
   std::vector<double> g, phi;
-  const InterfaceSolveReport report = solver.Solve(mesh, problem, g, phi);
+  const InterfaceSolveReport report = solver.Solve(c.mesh, c.problem, g, phi);
   Errors out;
   out.iterations = report.iterations;
-  out.phi = MaxNodeError(grid, solver, phi, [&](const Eigen::Vector3d& p, bool outside) {
-    return outside ? e.phi_plus(p) : e.phi_minus(p);
-  });
-  for (int v = 0; v < mesh.vertex_count(); ++v) {
-    const Eigen::Vector3d x = mesh.vertices().col(v);
-    out.g = std::max(out.g, std::abs(g[v] - (e.grad_plus(x) - e.grad_minus(x)).dot(e.normal(x))));
-  }
+  out.phi = c.MaxNodeError(solver, phi);
+  out.g = c.MaxJumpError(g);
   return out;
 }
 
@@ -257,15 +249,15 @@ TEST(FastIimSolver3D, RefusesADimpleThinnerThanTheGrid) {
 // modes' eigenvalues, about -1/999, are below the discretisation error of phi_n^-), and the
 // solver says so instead of returning its iterate.
 TEST(FastIimSolver3D, VertexValuesStallAtThousandToOne) {
-  const InterfaceExample3D e = MakeInterfaceExample3D("ellipsoid", 1000.0, 1.0);
-  const Grid3D grid = e.MakeGrid(32);
-  const TriangleMesh mesh = e.MeshFor(grid.h);
+  const test::InterfaceCase3D c("ellipsoid", 32, 1000.0, 1.0);
+  const Grid3D& grid = c.grid;
+  const TriangleMesh& mesh = c.mesh;
+  const InterfaceExample3D& e = c.example;
+  const InterfaceProblem3D& problem = c.problem;
   FastIim3DOptions options;
   options.harmonic_basis_min_ratio = 1e4;  // vertex values
   options.gmres.max_iterations = 200;
   FastIimSolver3D solver(grid, e.boundaries, options);
-  const InterfaceProblem3D problem =
-      SampleInterfaceProblem3D(e, grid, mesh, ClassifyNodes(grid, mesh));
   std::vector<double> g, phi;
   try {
     solver.Solve(mesh, problem, g, phi);
@@ -351,19 +343,16 @@ double ErrorNearTheFace(double d, double min_face_distance_h, std::string* refus
   };
   FastIim3DOptions options;
   options.min_face_distance_h = min_face_distance_h;
+  const test::InterfaceCase3D c(e, n, mesh);
   FastIimSolver3D solver(grid, e.boundaries, options);
-  const InterfaceProblem3D problem =
-      SampleInterfaceProblem3D(e, grid, mesh, ClassifyNodes(grid, mesh));
   std::vector<double> g, phi;
   try {
-    solver.Solve(mesh, problem, g, phi);
+    solver.Solve(mesh, c.problem, g, phi);
   } catch (const SolverError& err) {
     if (refusal) *refusal = err.what();
     return -1.0;
   }
-  return MaxNodeError(grid, solver, phi, [&](const Eigen::Vector3d& p, bool outside) {
-    return outside ? e.phi_plus(p) : e.phi_minus(p);
-  });
+  return c.MaxNodeError(solver, phi);
 }
 
 TEST(FastIimSolver3D, SurfaceNearABoxFaceIsAccurateOrRefused) {

@@ -18,6 +18,7 @@
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
 #include "ehd_capsule/electric/normal_derivative_fit.h"
 #include "ehd_capsule/reference/interface_examples.h"
+#include "support/interface_case.h"
 
 namespace ehd {
 namespace {
@@ -271,33 +272,21 @@ TEST(FastIimSolver, JumpExpansionMatchesExactJumpOfExample1) {
   for (double gk : gv) EXPECT_NEAR(gk, 2.0, 1e-12);  // sigma+ = sigma-: g = v / sigma exactly
 }
 
-double SolveError(const InterfaceExample& e, int n, InterfaceSolveReport* report = nullptr) {
-  const Grid2D g = e.MakeGrid(n);
-  const ClosedCurve c(e.Markers(e.DefaultMarkers(n)));
-  FastIimSolver solver(g, PoissonBoundaries{});
-  std::vector<double> gv, phi;
-  const InterfaceSolveReport r = solver.Solve(c, SampleInterfaceProblem(e, g, c), gv, phi);
-  if (report) *report = r;
-  const std::vector<double> exact = ExactSolution(e, g, c);
-  double err = 0;
-  for (std::size_t k = 0; k < phi.size(); ++k) err = std::max(err, std::abs(phi[k] - exact[k]));
-  return err;
-}
-
+// The max error of phi on the example's N x N grid with its default markers.
 double SolveErrorWith(const InterfaceExample& e, int n, bool deferred,
                       InterfaceSolveReport* report = nullptr) {
-  const Grid2D g = e.MakeGrid(n);
-  const ClosedCurve c(e.Markers(e.DefaultMarkers(n)));
+  const test::InterfaceCase c(e, n, e.Markers(e.DefaultMarkers(n)));
   FastIimOptions options;
   options.deferred_correction = deferred;
-  FastIimSolver solver(g, PoissonBoundaries{}, options);
+  FastIimSolver solver(c.grid, PoissonBoundaries{}, options);
   std::vector<double> gv, phi;
-  const InterfaceSolveReport r = solver.Solve(c, SampleInterfaceProblem(e, g, c), gv, phi);
+  const InterfaceSolveReport r = solver.Solve(c.curve, c.problem, gv, phi);
   if (report) *report = r;
-  const std::vector<double> exact = ExactSolution(e, g, c);
-  double err = 0;
-  for (std::size_t k = 0; k < phi.size(); ++k) err = std::max(err, std::abs(phi[k] - exact[k]));
-  return err;
+  return c.MaxError(phi);
+}
+
+double SolveError(const InterfaceExample& e, int n, InterfaceSolveReport* report = nullptr) {
+  return SolveErrorWith(e, n, FastIimOptions().deferred_correction, report);
 }
 
 TEST(TruncationCorrection, MakesThePeriodicPoissonSolveFourthOrder) {
@@ -642,12 +631,12 @@ TEST(FastIimSolver, CorrectionTermsMakeTheLocalTruncationErrorSmallAtIrregularPo
   const InterfaceExample e = MakeInterfaceExample("4");
   double previous = 0.0;
   for (int n : {40, 80}) {
-    const Grid2D g = e.MakeGrid(n);
-    const ClosedCurve c(e.Markers(e.DefaultMarkers(n)));
+    const test::InterfaceCase ic(e, n, e.Markers(e.DefaultMarkers(n)));
+    const Grid2D& g = ic.grid;
     FastIimSolver solver(g, PoissonBoundaries{});
     std::vector<double> gv, phi;
-    solver.Solve(c, SampleInterfaceProblem(e, g, c), gv, phi);
-    const std::vector<double> u = ExactSolution(e, g, c);
+    solver.Solve(ic.curve, ic.problem, gv, phi);
+    const std::vector<double>& u = ic.exact;
     const auto& cls = solver.classification();
     std::vector<double> correction(g.size(), 0.0);
     for (const auto& p : cls.crossing_pairs()) {
@@ -716,14 +705,11 @@ TEST(FastIimSolver, DenseMarkersGiveTheSameSolutionInEitherDirectionAndFromAnySt
     std::vector<double> phi[3];
     int k = 0;
     for (const Eigen::Matrix2Xd* x : orders) {
-      const ClosedCurve c(*x);
+      const test::InterfaceCase c(e, 80, *x);
       FastIimSolver solver(g, PoissonBoundaries{});
       std::vector<double> gv;
-      solver.Solve(c, SampleInterfaceProblem(e, g, c), gv, phi[k]);
-      const std::vector<double> exact = ExactSolution(e, g, c);
-      double err = 0.0;
-      for (std::size_t i = 0; i < exact.size(); ++i)
-        err = std::max(err, std::abs(phi[k][i] - exact[i]));
+      solver.Solve(c.curve, c.problem, gv, phi[k]);
+      const double err = c.MaxError(phi[k]);
       EXPECT_LT(err, ratio < 1.0 ? 1e-4 : 1.5e-3) << "sigma ratio " << ratio << ", order " << k;
       ++k;
     }

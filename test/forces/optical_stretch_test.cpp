@@ -8,40 +8,27 @@
 #include "ehd_capsule/coupling/simulation.h"
 #include "ehd_capsule/geometry/initial_shapes.h"
 #include "ehd_capsule/ib/marker_update.h"
+#include "support/tiny_scene.h"
 
 namespace ehd {
 namespace {
 
 // A 2D Hookean ring without bending in a closed box: its equilibrium under the two forces is
 // the lens of the term's header comment.
-const char* kRing = R"(
-name: stretched_ring
-Oh: 0.5
-E_b: 0
-eta: 0
-V: 1
-N: 96
-M: 160
-geometry: {shape: circle, half_width: 3}
-membrane: capsule
-flow: none
-stretch: {force: 0.5, contact_radius: 0.1}
-)";
+test::TinyScene Ring() {
+  return test::TinyScene(2)
+      .Name("stretched_ring")
+      .AtRest(0.5)
+      .With("N", 96)
+      .With("M", 160)
+      .With("geometry.half_width", 3)
+      .With("stretch.force", 0.5)
+      .With("stretch.contact_radius", 0.1);
+}
 
-const char* kSphere = R"(
-name: stretched_sphere
-dimension: 3
-Oh: 1
-E_b: 0
-V: 1
-N: 24
-mesh_subdivisions: 3
-law: neo_hookean
-geometry: {shape: sphere, half_width: 3}
-membrane: capsule
-flow: none
-stretch: {force: 0.5}
-)";
+test::TinyScene Sphere() {
+  return test::TinyScene(3).Name("stretched_sphere").AtRest(1).With("stretch.force", 0.5);
+}
 
 const ForceTermModule& Stretch() {
   for (const ForceTermModule& m : ForceTermModules()) {
@@ -66,12 +53,12 @@ std::pair<double, double> ExactLens(double f) {
 }
 
 TEST(OpticalStretch, KeysAreDeclaredCheckedAndOnlyForCapsules) {
-  const Scene s = ParseScene(kRing);
+  const Scene s = Ring().Build();
   EXPECT_TRUE(Stretch().active(s));
   EXPECT_EQ(s.Number("stretch.force"), 0.5);
-  EXPECT_FALSE(Stretch().active(ParseScene(kRing, {"stretch="})));  // no block: not built
-  EXPECT_FALSE(Stretch().active(ParseScene(kRing, {"stretch.force=0"})));
-  EXPECT_EQ(ParseScene(kSphere).Number("stretch.contact_radius"), 0.26);  // the default
+  EXPECT_FALSE(Stretch().active(Ring().Build({"stretch="})));  // no block: not built
+  EXPECT_FALSE(Stretch().active(Ring().Build({"stretch.force=0"})));
+  EXPECT_EQ(Sphere().Build().Number("stretch.contact_radius"), 0.26);  // the default
   for (const auto& [overrides, expect] :
        std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"stretch.force=-1"}, "'stretch.force' = -1 is out of range: accepted [0, 100]"},
@@ -80,14 +67,14 @@ TEST(OpticalStretch, KeysAreDeclaredCheckedAndOnlyForCapsules) {
            {{"stretch.pull=1"}, "unknown key"},
            {{"membrane=drop", "E_b=0"}, "a drop's points are not material"}}) {
     try {
-      ParseScene(kRing, overrides);
+      Ring().Build(overrides);
       ADD_FAILURE() << "accepted " << overrides[0];
     } catch (const SceneError& e) {
       EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
     }
   }
   // Too small a patch for the membrane's resolution is refused by name.
-  const Scene tiny = ParseScene(kRing, {"stretch.contact_radius=0.001"});
+  const Scene tiny = Ring().Build({"stretch.contact_radius=0.001"});
   try {
     Simulation sim(tiny);
     ADD_FAILURE() << "a patch without points accepted";
@@ -100,7 +87,7 @@ TEST(OpticalStretch, KeysAreDeclaredCheckedAndOnlyForCapsules) {
 // points carry nothing. 2D: the load is per unit length (F = sum load dl); 3D: per vertex.
 TEST(OpticalStretch, EachEndCarriesFAndTheNetForceIsZero) {
   {
-    const Scene s = ParseScene(kRing);
+    const Scene s = Ring().Build();
     const LatticeUnits u = DeriveLatticeUnits(s);
     Body<2> body;
     body.initial = CircleMarkers(s.M, u.radius, Eigen::Vector2d::Zero());
@@ -127,7 +114,7 @@ TEST(OpticalStretch, EachEndCarriesFAndTheNetForceIsZero) {
     EXPECT_LE(loaded, 16);  // 0.1 a of 2 pi a on each end: about 5 of 160 markers
   }
   {
-    const Scene s = ParseScene(kSphere);
+    const Scene s = Sphere().Build();
     const LatticeUnits u = DeriveLatticeUnits(s);
     Body<3> body;
     body.shape.mesh = IcosphereMesh(s.mesh_subdivisions, u.radius);
@@ -164,7 +151,7 @@ TEST(OpticalStretch, RingReachesTheExactLensOfTwoPointForces) {
   std::pair<double, double> at[2];
   const char* radii[2] = {"stretch.contact_radius=0.1", "stretch.contact_radius=0.05"};
   for (int run = 0; run < 2; ++run) {
-    Simulation sim(ParseScene(kRing, {radii[run]}));
+    Simulation sim(Ring().Build({radii[run]}));
     EXPECT_NE(sim.Pipeline().find("2. stretch: optical stretch"), std::string::npos)
         << sim.Pipeline();
     while (sim.state().time < 70) sim.Step();
@@ -185,7 +172,7 @@ TEST(OpticalStretch, RingReachesTheExactLensOfTwoPointForces) {
 // 3D: the sphere stretches along x and narrows across (no exact solution; Mills et al.'s cell
 // is the published benchmark, bench/ to come).
 TEST(OpticalStretch, SphereStretchesAlongTheForce) {
-  Simulation sim(ParseScene(kSphere));
+  Simulation sim(Sphere().Build());
   const auto start = Diameters(sim);
   for (int i = 0; i < 300; ++i) sim.Step();
   const auto now = Diameters(sim);

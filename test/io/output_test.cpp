@@ -10,32 +10,29 @@
 
 #include "ehd_capsule/io/time_series.h"
 #include "ehd_capsule/io/vtk_output.h"
+#include "support/tiny_scene.h"
 
 namespace ehd {
 namespace {
 
-const char* kTiny = R"(
-Ca: 0.1
-Re: 0.1
-E_b: 0
-eta: 0
-V: 1
-Ca_E: 0.2
-sigma_r: 1.75
-eps_r: 3.5
-N: 32
-M: 32
-geometry: {shape: ellipse, half_width: 4, aspect_ratio: 0.7}
-membrane: capsule
-flow: shear
-)";
+// A capsule in shear and a field, from the x-major ellipse of aspect ratio 0.7 (no name).
+Scene Tiny() {
+  return test::TinyScene(2)
+      .Without("name")
+      .With("Ca_E", 0.2)
+      .With("sigma_r", 1.75)
+      .With("eps_r", 3.5)
+      .With("geometry.shape", "ellipse")
+      .With("geometry.aspect_ratio", 0.7)
+      .Build();
+}
 
 // The columns the issue asks for come first; every row has the header's number of fields; the
 // inclination of the initial x-major ellipse is 0 and stays in (-pi/2, pi/2]; area is A / (pi a^2)
 // = 1 for the area-equivalent ellipse (to the spline's O(h^4) area error).
 TEST(TimeSeriesCsv, HeaderColumnsAndRows) {
   const std::string path = ::testing::TempDir() + "/ehd_series_test.csv";
-  Simulation sim(ParseScene(kTiny));
+  Simulation sim(Tiny());
   {
     TimeSeriesCsv csv(path, sim);
     csv.Write(sim);
@@ -78,7 +75,7 @@ TEST(TimeSeriesCsv, HeaderColumnsAndRows) {
 TEST(VtkSeries, WritesFramesAndCollections) {
   const std::string dir = ::testing::TempDir() + "/ehd_vtk_test";
   std::filesystem::remove_all(dir);
-  Simulation sim(ParseScene(kTiny));
+  Simulation sim(Tiny());
   VtkSeries vtk(dir);
   vtk.WriteFrame(sim);
   sim.Step();

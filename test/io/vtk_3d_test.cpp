@@ -10,6 +10,7 @@
 #include <string>
 
 #include "ehd_capsule/io/vtk_output.h"
+#include "support/tiny_scene.h"
 
 namespace ehd {
 namespace {
@@ -39,20 +40,11 @@ std::size_t OffsetOf(const std::string& file, const std::string& name) {
 }
 
 TEST(Vtk3D, AppendedBlocksDecodeToTheSimulationState) {
-  Simulation sim(ParseScene(R"(
-name: tiny_sphere
-dimension: 3
-Ca: 0.05
-Re: 0.1
-E_b: 0
-V: 1
-N: 16
-mesh_subdivisions: 2
-law: neo_hookean
-geometry: {shape: sphere, half_width: 2}
-membrane: capsule
-flow: shear
-)"));
+  Simulation sim(test::TinyScene(3)
+                     .Grid(16)
+                     .With("mesh_subdivisions", 2)
+                     .With("geometry.half_width", 2)
+                     .Build());
   for (int i = 0; i < 3; ++i) sim.Step();
   const std::string dir = ::testing::TempDir() + "/ehd_vtk3d";
   std::filesystem::remove_all(dir);

@@ -8,30 +8,19 @@ ROS_HOME, where roslaunch runs the node (issue #32 point 7):
   - replay.launch bag:=runs/a.bag plays <scratch>/runs/a.bag (rosbag play runs in ROS_HOME too).
 Exit status 0 when every check passes."""
 import os
-import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+import ehd_test_helpers as helpers
+from ehd_test_helpers import ROOT, check, finish, master_env
+
 # A master of its own (roslaunch starts one on this port), away from any running roscore.
-ENV = dict(os.environ, ROS_MASTER_URI="http://localhost:11395", ROS_HOSTNAME="localhost",
-           EHD_SKIP_SETUP="1")
+ENV = master_env(11395, EHD_SKIP_SETUP="1")
 ARGS = ["steps:=3", "record:=true", "progress_period:=0", "set:={N: 32, M: 32}"]
-failures = []
-
-
-def check(ok, what, output=""):
-    print(("ok: " if ok else "FAIL: ") + what, flush=True)
-    if not ok:
-        failures.append(what)
-        print(output[-4000:])
 
 
 def run(cmd, cwd):
-    env = dict(ENV, PWD=cwd)  # as a shell started there sets it
-    out = subprocess.run(cmd, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                         text=True, timeout=180)
-    return out.returncode, out.stdout
+    return helpers.run(cmd, env=dict(ENV, PWD=cwd), cwd=cwd)  # PWD: as a shell started there
 
 
 def main():
@@ -57,8 +46,7 @@ def main():
                            "bag:=runs/a.bag"], scratch)
         check(status == 0 and out.split()[-2:-1] == [os.path.join(scratch, "runs", "a.bag")],
               "replay.launch plays the bag from the scratch directory", out)
-    print(f"{len(failures)} failure(s)" if failures else "all checks passed")
-    return 1 if failures else 0
+    return finish()
 
 
 if __name__ == "__main__":

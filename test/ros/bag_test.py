@@ -6,12 +6,13 @@ bag), the frame's latched static transform, the field layer, and is closed (read
 .active) when the node stops; scripts/plot_bag turns it into PNG plots."""
 import os
 import sys
-import time
 import unittest
 
 import rosbag
 import rospy
 import rostest
+
+from ehd_test_helpers import wait_for_closed_bag
 
 
 class BagTest(unittest.TestCase):
@@ -20,17 +21,8 @@ class BagTest(unittest.TestCase):
         path = rospy.get_param("~bag")
         steps = rospy.get_param("~steps")
         every = rospy.get_param("~publish_every")
-        end = time.time() + 150
         # The node closes the bag when it reaches ~steps: wait for the file to be complete.
-        while time.time() < end:
-            if os.path.exists(path) and not os.path.exists(path + ".active"):
-                try:
-                    with rosbag.Bag(path) as bag:
-                        if bag.get_message_count("/ehd_capsule/state") > 0:
-                            break
-                except Exception:
-                    pass
-            time.sleep(0.2)
+        wait_for_closed_bag(path, "/ehd_capsule/state", 1, timeout=150)
         self.assertTrue(os.path.exists(path),
                         "no closed bag at %s after 150 s (did the node die before closing it?)"
                         % path)

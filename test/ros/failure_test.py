@@ -4,33 +4,23 @@ step must fail (the immersed-boundary stencil would leave the domain). The node 
 (ERROR diagnostic naming the wall), close its bag, and stay up: its services still answer."""
 import os
 import sys
-import time
 import unittest
 
 import rosbag
 import rospy
 import rostest
-from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from std_srvs.srv import Trigger
+
+from ehd_test_helpers import ErrorDiagnostics
 
 
 class FailureTest(unittest.TestCase):
     def test_error_stops_stepping_but_not_the_node(self):
         rospy.init_node("ehd_capsule_failure_test", anonymous=True)
         path = rospy.get_param("~bag")
-        errors = []
-
-        def on_diag(msg):
-            for s in msg.status:
-                # status "<node name>: simulation" (here /ehd_capsule: simulation)
-                if s.name.startswith("/ehd_capsule") and s.level == DiagnosticStatus.ERROR:
-                    errors.append(s)
-
-        rospy.Subscriber("/diagnostics", DiagnosticArray, on_diag)
-        end = time.time() + 60
-        while time.time() < end and not errors:
-            time.sleep(0.1)
-        self.assertTrue(errors, "no ERROR diagnostic within 60 s")
+        diagnostics = ErrorDiagnostics("/ehd_capsule")  # status "/ehd_capsule: simulation"
+        self.assertTrue(diagnostics.wait(60), "no ERROR diagnostic within 60 s")
+        errors = diagnostics.errors
         # The capsule is 0.74 h from the upper wall, which is also the potential's y face: the
         # electric solver refuses it first (a marker within 1 h of a box face), else the marker
         # stage's check (within 2 h of a wall) stops it.

@@ -16,16 +16,10 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+from ehd_test_helpers import ROOT, check, finish
+
 LAUNCH = os.path.join(ROOT, "launch")
 SCENES = os.path.join(ROOT, "config", "scenes")
-failures = []
-
-
-def check(ok, what):
-    print(("ok: " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
 
 
 def dump_params(launch_file, *args):
@@ -102,10 +96,7 @@ def main():
     got = dump_params(os.path.join(LAUNCH, "electric_drop.launch"), "on_record_error:=stop")
     check(got.get("/ehd_capsule/on_record_error") == "stop",
           "on_record_error passes through a scene's launch file")
-    if failures:
-        print(f"{len(failures)} check(s) failed")
-        return 1
-    return 0
+    return finish()
 
 
 if __name__ == "__main__":

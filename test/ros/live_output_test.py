@@ -16,19 +16,13 @@ import subprocess
 import sys
 import time
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+from ehd_test_helpers import ROOT, check, failures, finish, master_env
+
 # A master of its own (roslaunch starts one on this port), away from any running roscore.
-ENV = dict(os.environ, ROS_MASTER_URI="http://localhost:11398", ROS_HOSTNAME="localhost")
+ENV = master_env(11398)
 PROGRESS = re.compile(r"\[ INFO\] \[(\d+\.\d+)(?:, [0-9.]+)?\]: [^ ]+: step \d+ ")
 CMAKE_LINE = re.compile(r"^\[ *\d+%\]|Built target|^-- |Scanning dependencies|"
                         r"Consolidate compiler generated|^make(\[\d+\])?: ")
-failures = []
-
-
-def check(ok, what):
-    print(("ok: " if ok else "FAIL: ") + what, flush=True)
-    if not ok:
-        failures.append(what)
 
 
 def live_progress():
@@ -105,8 +99,7 @@ def quiet_when_up_to_date():
 def main():
     live_progress()
     quiet_when_up_to_date()
-    print(f"{len(failures)} failure(s)" if failures else "all checks passed")
-    return 1 if failures else 0
+    return finish()
 
 
 if __name__ == "__main__":

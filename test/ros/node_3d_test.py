@@ -28,6 +28,8 @@ from visualization_msgs.msg import Marker
 
 from ehd_capsule.msg import CapsuleState
 
+from ehd_test_helpers import wait_for_closed_bag
+
 NODE = "/ehd_capsule"
 
 
@@ -51,16 +53,7 @@ class Node3dTest(unittest.TestCase):
         self.assertTrue(seen, "no state within 60 s")
         self.assertLess(seen[-1], steps // 2, "the node ran too fast to change Ca_E mid-run")
         client.update_configuration({"Ca_E": 0.6})
-        end = time.time() + 150
-        while time.time() < end:
-            if os.path.exists(path) and not os.path.exists(path + ".active"):
-                try:
-                    with rosbag.Bag(path) as bag:
-                        if bag.get_message_count("/ehd_capsule/state") >= steps:
-                            break
-                except Exception:
-                    pass
-            time.sleep(0.2)
+        wait_for_closed_bag(path, "/ehd_capsule/state", steps, timeout=150)
         self.assertTrue(os.path.exists(path), "no closed bag at %s" % path)
         with rosbag.Bag(path) as bag:
             states = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/state"])]

@@ -28,6 +28,8 @@ import dynamic_reconfigure.client
 from std_srvs.srv import Trigger
 from ehd_capsule.msg import CapsuleState
 
+from ehd_test_helpers import node_binary
+
 NODE = "/ehd_capsule"
 
 
@@ -217,10 +219,7 @@ class NodeTest(unittest.TestCase):
     def test_7_invalid_scene_exits_with_message(self):
         import re
         import rospkg
-        libexec = subprocess.run(["catkin_find", "--libexec", "ehd_capsule"],
-                                 capture_output=True, text=True).stdout.split()
-        self.assertTrue(libexec, "catkin_find cannot find ehd_capsule's executables")
-        node = os.path.join(libexec[0], "ehd_capsule_node")
+        node = node_binary()
         shipped = os.path.join(rospkg.RosPack().get_path("ehd_capsule"), "config", "scenes",
                                "shear_field.yaml")
         with open(shipped) as f:
@@ -243,9 +242,7 @@ class NodeTest(unittest.TestCase):
     def test_8_existing_bag_is_not_overwritten(self):
         # A new run on an existing bag path used to replace it silently: now it refuses at start
         # (exit status != 0, message naming the path and the way out) unless ~overwrite is true.
-        libexec = subprocess.run(["catkin_find", "--libexec", "ehd_capsule"],
-                                 capture_output=True, text=True).stdout.split()
-        node = os.path.join(libexec[0], "ehd_capsule_node")
+        node = node_binary()
         with tempfile.NamedTemporaryFile(suffix=".bag", delete=False) as f:
             f.write(b"an earlier run")
             path = f.name

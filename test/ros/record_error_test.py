@@ -9,13 +9,13 @@ import signal
 import subprocess
 import sys
 import tempfile
-import time
 import unittest
 
 import rospy
 import rostest
-from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from std_srvs.srv import Trigger
+
+from ehd_test_helpers import ErrorDiagnostics, node_binary
 
 
 class RecordErrorTest(unittest.TestCase):
@@ -25,18 +25,9 @@ class RecordErrorTest(unittest.TestCase):
 
     def test_write_failure_is_reported_and_the_node_survives(self):
         path = rospy.get_param("~bag")
-        errors = []
-
-        def on_diag(msg):
-            for s in msg.status:
-                if s.name.startswith("/ehd_capsule") and s.level == DiagnosticStatus.ERROR:
-                    errors.append(s)
-
-        rospy.Subscriber("/diagnostics", DiagnosticArray, on_diag)
-        end = time.time() + 60
-        while time.time() < end and not errors:
-            time.sleep(0.1)
-        self.assertTrue(errors, "no ERROR diagnostic within 60 s")
+        diagnostics = ErrorDiagnostics("/ehd_capsule")
+        self.assertTrue(diagnostics.wait(60), "no ERROR diagnostic within 60 s")
+        errors = diagnostics.errors
         self.assertIn("writing the bag", errors[-1].message)
         self.assertIn(path, errors[-1].message)
         self.assertIn(os.strerror(27), errors[-1].message)  # EFBIG: "File too large"
@@ -52,9 +43,7 @@ class RecordErrorTest(unittest.TestCase):
 
     def start_limited(self, name, *args):
         """The node under a 200 kB file size limit, recording; returns (process, bag)."""
-        libexec = subprocess.run(["catkin_find", "--libexec", "ehd_capsule"],
-                                 capture_output=True, text=True).stdout.split()
-        node = os.path.join(libexec[0], "ehd_capsule_node")
+        node = node_binary()
         bag = os.path.join(tempfile.mkdtemp(prefix="ehd_record_error_"), name + ".bag")
         rospy.set_param("/%s/set" % name, {"N": 32, "M": 32})
         command = ["bash", "-c", 'ulimit -f 200; exec "$0" "$@"', node, "__name:=" + name,
@@ -77,16 +66,11 @@ class RecordErrorTest(unittest.TestCase):
         os.remove(bag + ".active")
 
     def test_live_run_stopped_after_a_failure_exits_1(self):
-        failed = []
-        rospy.Subscriber("/diagnostics", DiagnosticArray, lambda m: failed.extend(
-            s for s in m.status
-            if s.name.startswith("/ehd_record_error_live") and s.level == DiagnosticStatus.ERROR))
+        diagnostics = ErrorDiagnostics("/ehd_record_error_live")
         p, bag = self.start_limited("ehd_record_error_live")
         try:
-            end = time.time() + 60
-            while time.time() < end and not failed and p.poll() is None:
-                time.sleep(0.1)
-            self.assertTrue(failed, "no ERROR diagnostic from the live run")
+            self.assertTrue(diagnostics.wait(60, lambda: p.poll() is None),
+                            "no ERROR diagnostic from the live run")
             p.send_signal(signal.SIGINT)
             out, _ = p.communicate(timeout=60)
         finally:

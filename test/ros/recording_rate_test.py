@@ -14,18 +14,13 @@ import sys
 import tempfile
 import time
 
+from ehd_test_helpers import check, failures, finish, master_env
+
 # A master of its own (roslaunch starts one on this port), away from any running roscore.
-ENV = dict(os.environ, ROS_MASTER_URI="http://localhost:11394", ROS_HOSTNAME="localhost")
+ENV = master_env(11394)
 INFO = re.compile(r"recording: ([0-9.]+) (B|kB|MB) per state, ([0-9.]+) (kB|MB|GB)/s \(measured "
                   r"over the first \d+ states, [0-9.]+ s\); ([0-9.]+) (kB|MB|GB|TB) free on ([^\s\x1b]+)")
 UNIT = {"B": 1, "kB": 1e3, "MB": 1e6, "GB": 1e9, "TB": 1e12}
-failures = []
-
-
-def check(ok, what):
-    print(("ok: " if ok else "FAIL: ") + what, flush=True)
-    if not ok:
-        failures.append(what)
 
 
 def main():
@@ -66,8 +61,7 @@ def main():
     os.rmdir(scratch)
     if failures:
         print(out[-5000:])
-    print(f"{len(failures)} failure(s)" if failures else "all checks passed")
-    return 1 if failures else 0
+    return finish()
 
 
 if __name__ == "__main__":

@@ -15,11 +15,7 @@ import rospy
 import rostest
 from ehd_capsule.msg import CapsuleState
 
-
-def node_binary():
-    libexec = subprocess.run(["catkin_find", "--libexec", "ehd_capsule"],
-                             capture_output=True, text=True).stdout.split()
-    return os.path.join(libexec[0], "ehd_capsule_node")
+from ehd_test_helpers import node_binary
 
 
 class SignalsTest(unittest.TestCase):

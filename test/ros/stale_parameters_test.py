@@ -8,54 +8,32 @@ roscore kept running:
     and says so in a warning that names each with its value, but not the ones given on its own
     command line (_progress_period:=0).
 Exit status 0 when every check passes."""
-import os
 import re
-import signal
-import subprocess
 import sys
-import time
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+from ehd_test_helpers import Roscore, check, finish, master_env, run
+
 PORT = 11396
-ENV = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{PORT}", ROS_HOSTNAME="localhost")
+ENV = master_env(PORT)
 SMALL = "N: 32, M: 32"
-failures = []
-
-
-def check(ok, what, output=""):
-    print(("ok: " if ok else "FAIL: ") + what, flush=True)
-    if not ok:
-        failures.append(what)
-        print(output[-4000:])
-
-
-def run(*cmd):
-    out = subprocess.run(list(cmd), cwd=ROOT, env=ENV, stdout=subprocess.PIPE,
-                         stderr=subprocess.STDOUT, text=True, timeout=180)
-    return out.returncode, out.stdout
 
 
 def main():
-    core = subprocess.Popen(["roscore", "-p", str(PORT)], env=ENV, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL, start_new_session=True)
-    try:
-        for _ in range(60):
-            if subprocess.run(["rosparam", "list"], env=ENV, capture_output=True).returncode == 0:
-                break
-            time.sleep(0.5)
+    with Roscore(PORT, ENV):
         launch = ["roslaunch", "ehd_capsule", "shear_field.launch", "steps:=3",
                   "progress_period:=0"]
-        status, out = run(*launch, f"set:={{Ca_E: 0.5, {SMALL}}}")
+        status, out = run([*launch, f"set:={{Ca_E: 0.5, {SMALL}}}"], ENV)
         check(status == 0 and "(Ca_E = 0.5)" in out, "the first launch runs at set's Ca_E = 0.5",
               out)
-        status, out = run(*launch, f"set:={{{SMALL}}}")
+        status, out = run([*launch, f"set:={{{SMALL}}}"], ENV)
         check(status == 0 and "(Ca_E = 0.3)" in out and "(Ca_E = 0.5)" not in out,
               "the second launch, without Ca_E in set, runs at the scene's Ca_E = 0.3", out)
         check("grid 32 x 32" in out, "the second launch's own set (N: 32) applies", out)
         check("taken from the parameter server" not in out,
               "a launch warns of no parameter from the server (it set them all)", out)
 
-        status, out = run("rosrun", "ehd_capsule", "ehd_capsule_node", "_progress_period:=0")
+        status, out = run(["rosrun", "ehd_capsule", "ehd_capsule_node", "_progress_period:=0"],
+                          ENV)
         warning = next((l for l in out.splitlines() if "taken from the parameter server" in l), "")
         check(status == 0 and "ran after 3 steps" in out,
               "a rosrun after them takes the launch's ~steps = 3 left on the server", out)
@@ -64,15 +42,7 @@ def main():
                   f"its warning names {name}", out)
         check("~progress_period" not in warning,
               "its warning leaves out _progress_period:=0, given on its command line", out)
-    finally:
-        os.killpg(core.pid, signal.SIGINT)
-        try:
-            core.wait(timeout=30)
-        except subprocess.TimeoutExpired:
-            os.killpg(core.pid, signal.SIGKILL)
-            core.wait()
-    print(f"{len(failures)} failure(s)" if failures else "all checks passed")
-    return 1 if failures else 0
+    return finish()
 
 
 if __name__ == "__main__":
