@@ -129,6 +129,12 @@ class NodeTest(unittest.TestCase):
         from rosgraph_msgs.msg import Log
         logs = []
         sub = rospy.Subscriber("/rosout", Log, lambda m: logs.append(m.msg), queue_size=100)
+        # The subscription must be connected before the first refusal is logged (on a loaded
+        # machine the first message was lost).
+        import time
+        deadline = time.time() + 10.0
+        while sub.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.05)
         last = self.rec.snapshot()[-1]
         # 100 is far above the scene's range and above the old slider limit (20), which
         # dynamic_reconfigure clamped to silently: the refusal must name what was asked for.
