@@ -262,7 +262,8 @@ class CampaignRun:
     """What a campaign's table function (the sweep file's `table: FILE.py`) sees of one run.
 
     name, index, values (grid key -> value, tags without their prefix: `variant`, `case`),
-    label (the grid.variants label, or the name), status (ok, failed, running (t = ...),
+    label (the grid.variants label, or the name), overrides (the run's scene overrides:
+    dotted key -> value, `set` and the grid together), status (ok, failed, running (t = ...),
     not run), finished, error, stopped (t_end, steady, error), final (the last chunk's
     `ehd_sim run --summary-json` object: t, step, dxy, inclination_over_pi, d_field,
     surface_flow, area_drift, ...; {} if none), wall_s, cpu_s (all chunks), folder,
@@ -273,6 +274,7 @@ class CampaignRun:
         self.name, self.index = run.name, run.index
         self.values = {display_key(k): v for k, v in run.values.items()}
         self.label = sweep.variant_labels.get(run.values.get("tag.variant"), run.name)
+        self.overrides = dict(run.overrides)
         self.status = row["status"]
         self.finished = row["status"] in ("ok", "failed")
         self.error = row.get("error") or ""
