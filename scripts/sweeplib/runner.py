@@ -172,7 +172,7 @@ def chunk_error(summary, returncode):
         reason = summary.get("reason") or "ehd_sim run ended with status %s" % summary.get(
             "status")
         if summary.get("status") == "simulation_error":
-            return "simulation stopped: " + reason
+            return "simulation stopped: " + reason  # builds, not reads
         return reason
     if returncode < 0:
         return "ehd_sim killed by signal %d (no --summary-json written)" % -returncode
