@@ -95,8 +95,24 @@ def tank_treading_frequency(rows):
     return 2.0 * abs(slope)
 
 
+def end_values(final):
+    """The end-state values of the summary table from the last chunk's `ehd_sim run
+    --summary-json` object (None when the process wrote none)."""
+    if not final or "t" not in final:
+        return {}
+    return {"t": final["t"], "steps": final["step"], "dxy": final["dxy"],
+            "theta": final["inclination_over_pi"], "area_drift": final["area_drift"]}
+
+
+def series_values(rows, tolerance):
+    """The values of the summary table that need the time series (not only the end state)."""
+    return {"tt_frequency": tank_treading_frequency(rows),
+            "steady_time": steady_time(rows, tolerance)}
+
+
 def final_values(rows, tolerance):
-    """The values of the summary table from a run's series."""
+    """The values of the summary table from a run's series (a run without a --summary-json of
+    its last chunk, e.g. one killed by a signal, has only these)."""
     if not rows:
         return {"t": None, "steps": None, "dxy": None, "theta": None, "area_drift": None,
                 "tt_frequency": None, "steady_time": None}

@@ -17,8 +17,10 @@ Run folder (<out>/runs/<name>/):
   run.log        the output of every chunk, with a header line each
   chunks/        while running: <k>.csv per chunk, the last committed <k>.ckpt
   series.csv     when done: the whole time series
-  summary.json   when done: status, error, final values, wall time; its presence marks the
-                 run as finished (summary.csv: the same as one CSV row)
+  summary.json   when done: status, why it stopped, error, final values (from the last
+                 chunk's `ehd_sim run --summary-json`), wall and CPU time; a run is finished
+                 when its summary.json has an end reason (is_finished; summary.csv: the same
+                 as one CSV row)
   checkpoint.bin the final state, with record.keep_checkpoint
   vtk/           ParaView files of the final state, with record.vtk_final
 """
@@ -27,6 +29,7 @@ import csv
 import fcntl
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -91,15 +94,31 @@ def run_dir(out, run):
     return os.path.join(out, "runs", run.name)
 
 
+# Why a finished run stopped (summary.json "stopped"): the only "is it finished" check of the
+# sweeps and campaigns (is_finished). t_end and steady: ok; error: failed.
+END_REASONS = ("t_end", "steady", "error")
+
+# ehd_sim run --summary-json statuses that end a chunk cleanly; any other is an error whose
+# "reason" is the run's error message.
+CLEAN_STATUSES = ("completed", "steady", "not_steady")
+
+
+def is_finished(summary):
+    """True for the summary of a finished run (ok or failed): it names why the run stopped."""
+    return isinstance(summary, dict) and summary.get("stopped") in END_REASONS and \
+        summary.get("status") in ("ok", "failed")
+
+
 def read_summary(out, run):
     path = os.path.join(run_dir(out, run), "summary.json")
     if not os.path.exists(path):
         return None
     try:
         with open(path) as f:
-            return json.load(f)
+            s = json.load(f)
     except (OSError, ValueError):
         return None  # written atomically, so this is a foreign or damaged file: redo the run
+    return s if is_finished(s) else None
 
 
 def progress_of(out, run, sweep):
@@ -133,20 +152,31 @@ def _write_atomic(path, text):
     os.replace(tmp, path)
 
 
-def _last_error(text):
-    """The message of the last `ehd_sim run: error: ...`, `... simulation stopped: ...` or
-    step-cap line of a log."""
-    message = ""
-    for line in text.splitlines():
-        if not line.startswith("ehd_sim"):
-            continue
-        if "simulation stopped: " in line:
-            message = "simulation stopped: " + line.split("simulation stopped: ", 1)[1]
-        elif ": error: " in line:
-            message = line.split(": error: ", 1)[1]
-        elif "stopped at the step cap" in line:
-            message = line.split(": ", 1)[1]
-    return message.strip()
+def read_chunk_summary(path):
+    """The JSON object `ehd_sim run --summary-json` wrote (None if the process wrote none: it
+    was killed, or crashed). ehd_sim writes it to a .tmp file and renames it, so it is never
+    partial."""
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def chunk_error(summary, returncode):
+    """The error of a chunk that did not end cleanly, from its --summary-json (status and
+    reason), or from the exit status when there is no summary; "" for a clean chunk."""
+    if summary is not None:
+        if summary.get("status") in CLEAN_STATUSES and returncode == 0:
+            return ""
+        reason = summary.get("reason") or "ehd_sim run ended with status %s" % summary.get(
+            "status")
+        if summary.get("status") == "simulation_error":
+            return "simulation stopped: " + reason  # builds, not reads
+        return reason
+    if returncode < 0:
+        return "ehd_sim killed by signal %d (no --summary-json written)" % -returncode
+    return "ehd_sim exited %d without writing its --summary-json (see run.log)" % returncode
 
 
 def merged_rows(chunks, k):
@@ -244,9 +274,12 @@ def _execute_locked(sweep, run, out, folder, ehd_sim, threads, retry_failed):
         k += 1
         csv_tmp = os.path.join(chunks, "%d.csv.tmp" % k)
         ckpt_tmp = os.path.join(chunks, "%d.ckpt.tmp" % k)
+        summary_path = os.path.join(chunks, "%d.summary.json" % k)
+        if os.path.exists(summary_path):
+            os.remove(summary_path)
         cmd = [ehd_sim, "run", scene_path, "--until", repr(ends[k - 1]), "--csv", csv_tmp,
                "--csv-every", str(sweep.csv_every), "--checkpoint", ckpt_tmp,
-               "--progress", "60"]
+               "--summary-json", summary_path, "--progress", "60"]
         if k > 1:
             cmd += ["--restart", os.path.join(chunks, "%d.ckpt" % (k - 1))]
         with open(log_path, "a") as log:
@@ -270,15 +303,17 @@ def _execute_locked(sweep, run, out, folder, ehd_sim, threads, retry_failed):
                 k, proc.returncode, wall, cpu))
         if proc.returncode < 0 and CHILDREN.stopping.is_set():
             raise Interrupted()
+        chunk_summary = read_chunk_summary(summary_path)
+        if chunk_summary is not None:
+            # ehd_sim's own times (from the start of the process, scene set-up included).
+            wall, cpu = chunk_summary["wall_seconds"], chunk_summary["cpu_seconds"]
         with open(os.path.join(chunks, "%d.json" % k), "w") as f:
-            json.dump({"wall_s": wall, "cpu_s": cpu}, f)
+            json.dump({"wall_s": wall, "cpu_s": cpu,
+                       "steps": (chunk_summary or {}).get("steps_taken", 0)}, f)
         if os.path.exists(csv_tmp):
             os.replace(csv_tmp, os.path.join(chunks, "%d.csv" % k))
-        if proc.returncode != 0:
-            text = _tail(log_path)
-            error = _last_error(text).replace(folder + os.sep, "") or (
-                "ehd_sim killed by signal %d" % -proc.returncode if proc.returncode < 0
-                else "ehd_sim exited %d" % proc.returncode)
+        error = chunk_error(chunk_summary, proc.returncode).replace(folder + os.sep, "")
+        if error:
             stopped = "error"
             if os.path.exists(ckpt_tmp):
                 os.remove(ckpt_tmp)
@@ -291,16 +326,10 @@ def _execute_locked(sweep, run, out, folder, ehd_sim, threads, retry_failed):
     return _finish(sweep, run, folder, chunks, k, rows, stopped, error, resumed, ehd_sim, env)
 
 
-def _tail(path, size=20000):
-    with open(path, "rb") as f:
-        f.seek(0, 2)
-        f.seek(max(0, f.tell() - size))
-        return f.read().decode(errors="replace")
-
-
 def _finish(sweep, run, folder, chunks, k, rows, stopped, error, resumed, ehd_sim, env):
     walls = [json.load(open(os.path.join(chunks, n))) for n in os.listdir(chunks)
-             if n.endswith(".json")]
+             if re.match(r"^[0-9]+\.json$", n)]
+    final = read_chunk_summary(os.path.join(chunks, "%d.summary.json" % k)) if k else None
     _merge_csv(chunks, k, os.path.join(folder, "series.csv"))
     last_ckpt = os.path.join(chunks, "%d.ckpt" % k)
     if not error and sweep.vtk_final and os.path.exists(last_ckpt):
@@ -317,13 +346,17 @@ def _finish(sweep, run, folder, chunks, k, rows, stopped, error, resumed, ehd_si
     if sweep.keep_checkpoint and os.path.exists(last_ckpt):
         os.replace(last_ckpt, os.path.join(folder, "checkpoint.bin"))
     values = analysis.final_values(rows, sweep.steady_tolerance)
+    values.update(analysis.end_values(final))
     summary = {"run": run.name, "index": run.index,
                "parameters": {k2: v for k2, v in run.values.items()},
                "status": "failed" if error else "ok", "stopped": stopped}
     summary.update(values)
     summary.update({"wall_s": round(sum(w["wall_s"] for w in walls), 3),
                     "cpu_s": round(sum(w["cpu_s"] for w in walls), 3),
-                    "chunks": k, "resumed": resumed, "error": error})
+                    "chunks": k, "resumed": resumed, "error": error,
+                    # The last chunk's `ehd_sim run --summary-json` object: every end value
+                    # (d_field, surface_flow, ...), its status and reason.
+                    "final": final})
     _write_atomic(os.path.join(folder, "summary.csv"), _summary_csv(summary))
     _write_atomic(os.path.join(folder, "summary.json"), json.dumps(summary, indent=1) + "\n")
     shutil.rmtree(chunks, ignore_errors=True)

@@ -45,6 +45,13 @@ FINAL_QUANTITIES = {
 }
 NAME_VALUE = re.compile(r"^[A-Za-z0-9._-]+$")
 
+# A grid key that is not a scene key but chooses each run's base scene (a shipped scene name or
+# a .yaml path): `grid.product.scene: [shear_field, drop_shear]`; the top-level `scene` is then
+# not needed.
+SCENE_KEY = "scene"
+# The grid key of grid.variants: each entry's name (a tag, shown as "variant").
+VARIANT_KEY = TAG_PREFIX + "variant"
+
 
 class SweepError(Exception):
     """A sweep file problem; the message names the key."""
@@ -222,21 +229,28 @@ def resolve_scene(name, base_dir):
 class Run:
     """One point of the grid."""
 
-    def __init__(self, index, values, sweep):
+    def __init__(self, index, values, sweep, variant_set=None):
         self.index = index
         self.values = values  # grid key -> value (tags included), in grid order
         self.name = "+".join("%s=%s" % (k[len(TAG_PREFIX):] if k.startswith(TAG_PREFIX) else k,
                                         format_value(v)) for k, v in values.items())
         overrides = dict(sweep.fixed)
-        overrides.update({k: v for k, v in values.items() if not k.startswith(TAG_PREFIX)})
-        self.scene = apply_overrides(sweep.base_scene, overrides)
+        overrides.update({k: v for k, v in values.items()
+                          if not k.startswith(TAG_PREFIX) and k != SCENE_KEY})
+        overrides.update(variant_set or {})  # the overrides of this run's grid.variants entry
+        self.overrides = overrides
+        if SCENE_KEY in values:
+            self.scene_path = sweep.scene_paths[values[SCENE_KEY]]
+            base = sweep.base_scenes[values[SCENE_KEY]]
+        else:
+            self.scene_path, base = sweep.scene_path, sweep.base_scene
+        self.scene = apply_overrides(base, overrides)
 
     def scene_yaml(self, sweep):
         header = ("# Written by scripts/sweep: sweep %s, run %s\n# base scene %s with %s\n" % (
-            sweep.name, self.name, os.path.relpath(sweep.scene_path, REPO),
-            ", ".join("%s=%s" % (k, format_value(v)) for k, v in
-                      list(sweep.fixed.items()) + [(k, v) for k, v in self.values.items()
-                                                   if not k.startswith(TAG_PREFIX)])))
+            sweep.name, self.name, os.path.relpath(self.scene_path, REPO),
+            ", ".join("%s=%s" % (k, format_value(v)) for k, v in self.overrides.items())
+            or "no overrides"))
         return header + yaml.safe_dump(self.scene, sort_keys=False, default_flow_style=False)
 
 
@@ -321,11 +335,12 @@ class Sweep:
     """A validated sweep file and its runs."""
 
     TOP_KEYS = {"name", "description", "reference", "scene", "set", "grid", "stop", "record",
-                "plots"}
+                "plots", "table", "jobs"}
 
-    def __init__(self, path, extra_set=None, t_end=None):
+    def __init__(self, path, extra_set=None, t_end=None, only=None):
         """extra_set: overrides from the command line (`--set N=64`), added to the file's `set`
-        (and replacing its values); t_end: replaces stop.t_end (`--t-end`)."""
+        (and replacing its values); t_end: replaces stop.t_end (`--t-end`); only: {grid key:
+        [values]} keeps the runs with those values (`--only scene=a,b`)."""
         self.path = os.path.abspath(path)
         if not os.path.isfile(self.path):
             raise SweepError("sweep file %s not found" % path)
@@ -334,7 +349,7 @@ class Sweep:
         except yaml.YAMLError as e:
             raise SweepError("sweep file %s is not valid YAML: %s" % (path, e))
         self.text = open(self.path).read()
-        _check_keys("", data, self.TOP_KEYS, required=("scene", "grid", "stop"))
+        _check_keys("", data, self.TOP_KEYS, required=("grid", "stop"))
         stem = os.path.splitext(os.path.basename(self.path))[0]
         self.name = _string("name", data.get("name", stem))
         if not NAME_VALUE.match(self.name):
@@ -343,14 +358,13 @@ class Sweep:
         self.description = _string("description", data["description"]) \
             if "description" in data else ""
         self.reference = _string("reference", data["reference"]) if "reference" in data else ""
-        self.scene_path = resolve_scene(_string("scene", data["scene"]),
-                                        os.path.dirname(self.path))
-        try:
-            self.base_scene = load_yaml(self.scene_path)
-        except yaml.YAMLError as e:
-            raise SweepError("scene %s is not valid YAML: %s" % (self.scene_path, e))
-        if not isinstance(self.base_scene, dict):
-            raise SweepError("scene %s: not a mapping" % self.scene_path)
+        self.scene_path, self.base_scene = None, None
+        if "scene" in data:
+            self.scene_path = resolve_scene(_string("scene", data["scene"]),
+                                            os.path.dirname(self.path))
+            self.base_scene = _load_scene(self.scene_path)
+        self.jobs = _number("jobs", data["jobs"], low=1, integer=True) if "jobs" in data \
+            else None
 
         fixed = data.get("set", {}) or {}
         _check_keys("set", fixed, set(fixed) if isinstance(fixed, dict) else set())
@@ -368,6 +382,20 @@ class Sweep:
             self.variant.append("t_end=%s" % format_value(t_end))
 
         self._read_grid(data["grid"])
+        if self.base_scene is None and SCENE_KEY not in self.grid_keys:
+            raise SweepError("sweep file: missing key 'scene' (the base scene; or give a grid "
+                             "key 'scene' with a base scene per run)")
+        if self.base_scene is not None and SCENE_KEY in self.grid_keys:
+            raise SweepError("scene: given both at the top and as a grid key; keep one")
+        self.scene_paths, self.base_scenes = {}, {}
+        for i, name in enumerate(self._grid_values(SCENE_KEY)):
+            where = self._grid_where[SCENE_KEY] + "[%d]" % i
+            try:
+                self.scene_paths[name] = resolve_scene(_string(where, name),
+                                                       os.path.dirname(self.path))
+            except SweepError as e:
+                raise SweepError("%s: %s" % (where, e))
+            self.base_scenes[name] = _load_scene(self.scene_paths[name])
         self._read_stop(data["stop"])
         self._read_record(data.get("record", {}))
         plots = data.get("plots", [])
@@ -379,61 +407,146 @@ class Sweep:
             if files.count(f) > 1:
                 raise SweepError("plots: file '%s' appears twice" % f)
 
+        self.table = None
+        if "table" in data:
+            self.table = _load_table(_string("table", data["table"]), os.path.dirname(self.path))
+
         self.runs = []
         for index, combo in enumerate(itertools.product(*self.axes)):
-            values = {}
+            values, variant_set = {}, {}
             for part in combo:
+                part = dict(part)
+                variant_set.update(part.pop("__set__", {}))
                 values.update(part)
-            self.runs.append(Run(index, values, self))
+            self.runs.append(Run(index, values, self, variant_set))
+        for key, wanted in (only or {}).items():
+            self._select(key, wanted)
         names = [r.name for r in self.runs]
         if len(set(names)) != len(names):  # cannot happen with distinct values; kept as a guard
             raise SweepError("grid: two runs have the same name")
 
+    def _select(self, key, wanted):
+        """Keeps the runs whose grid value of key (a tag with or without its prefix) is one of
+        wanted (texts, as in run names); the runs are numbered again (--task follows)."""
+        full = key if key in self.grid_keys else TAG_PREFIX + key
+        if full not in self.grid_keys:
+            raise SweepError("--only %s: not a grid key; grid keys: %s" % (
+                key, ", ".join(k[len(TAG_PREFIX):] if k.startswith(TAG_PREFIX) else k
+                               for k in self.grid_keys)))
+        values = [format_value(r.values[full]) for r in self.runs]
+        for w in wanted:
+            if w not in values:
+                raise SweepError("--only %s: '%s' is not one of its values (%s)" % (
+                    key, w, ", ".join(dict.fromkeys(values))))
+        self.runs = [r for r in self.runs if format_value(r.values[full]) in wanted]
+        for i, r in enumerate(self.runs):
+            r.index = i
+        self.variant.append("%s=%s" % (key, "-".join(wanted)))
+
     def _read_grid(self, grid):
-        _check_keys("grid", grid, {"product", "zip"})
+        _check_keys("grid", grid, {"product", "zip", "variants"})
         if not grid:
-            raise SweepError("grid: empty (give 'product' and/or 'zip')")
+            raise SweepError("grid: empty (give 'product', 'zip' and/or 'variants')")
         self.axes = []  # each axis: a list of {key: value} mappings (one per point)
         self.grid_keys = []
-        product = grid.get("product", {})
+        self._grid_where = {}  # grid key -> where it is written (for messages)
+        self.variant_labels = {}  # grid.variants name -> its label (the name if none)
+        variant_keys = set()
+        for section in grid:  # the axes in the order written (the last varies fastest)
+            if section == "product":
+                self._read_product(grid["product"])
+            elif section == "zip":
+                self._read_zip(grid["zip"])
+            else:
+                variant_keys = self._read_variants(grid["variants"])
+        for key in self.grid_keys:
+            if key in self.fixed:
+                raise SweepError("grid: '%s' is also fixed in 'set'" % key)
+            if key in variant_keys:
+                raise SweepError("grid.variants: '%s' is also a grid key of %s" % (
+                    key, self._grid_where[key]))
+            if key.startswith(TAG_PREFIX) and key.count(".") != 1:
+                raise SweepError("grid: tag '%s' must be one word after '%s'" % (key, TAG_PREFIX))
+        for key in variant_keys:
+            if key in self.fixed:
+                raise SweepError("grid.variants: '%s' is also fixed in 'set' (a variant's "
+                                 "overrides must not replace the common ones silently)" % key)
+        for key in self.fixed:
+            if key.startswith(TAG_PREFIX):
+                raise SweepError("set.%s: tags belong in the grid" % key)
+            if key == SCENE_KEY:
+                raise SweepError("set.scene: the base scene is the top-level key 'scene'")
+
+    def _add_key(self, where, key):
+        if key in self.grid_keys:
+            raise SweepError("%s: '%s' is also in %s" % (where, key, self._grid_where[key]))
+        self.grid_keys.append(key)
+        self._grid_where[key] = where
+
+    def _grid_values(self, key):
+        return [point[key] for axis in self.axes for point in axis if key in point]
+
+    def _read_product(self, product):
         if not isinstance(product, dict):
             _bad_mapping("grid.product", product)
-        if "product" in grid and not product:
+        if not product:
             raise SweepError("grid.product: empty (give at least one key with its values)")
         for key, values in product.items():
             _key_name("grid.product", key)
             _value_list("grid.product.%s" % key, values)
+            self._add_key("grid.product.%s" % key, key)
             self.axes.append([{key: v} for v in values])
-            self.grid_keys.append(key)
-        if "zip" in grid:
-            z = grid["zip"]
-            if not isinstance(z, dict):
-                _bad_mapping("grid.zip", z)
-            if not z:
-                raise SweepError("grid.zip: empty (give at least one key with its values)")
-            length = None
-            first = None
-            for key, values in z.items():
-                _key_name("grid.zip", key)
-                _value_list("grid.zip.%s" % key, values)
-                if length is None:
-                    length, first = len(values), key
-                elif len(values) != length:
-                    raise SweepError("grid.zip.%s: %d values, but grid.zip.%s has %d (zipped "
-                                     "lists go together and must have the same length)" % (
-                                         key, len(values), first, length))
-                if key in self.grid_keys:
-                    raise SweepError("grid.zip.%s: also in grid.product" % key)
-                self.grid_keys.append(key)
-            self.axes.append([{k: z[k][i] for k in z} for i in range(length)])
-        for key in self.grid_keys:
-            if key in self.fixed:
-                raise SweepError("grid: '%s' is also fixed in 'set'" % key)
-            if key.startswith(TAG_PREFIX) and key.count(".") != 1:
-                raise SweepError("grid: tag '%s' must be one word after '%s'" % (key, TAG_PREFIX))
-        for key in self.fixed:
-            if key.startswith(TAG_PREFIX):
-                raise SweepError("set.%s: tags belong in the grid" % key)
+
+    def _read_zip(self, z):
+        if not isinstance(z, dict):
+            _bad_mapping("grid.zip", z)
+        if not z:
+            raise SweepError("grid.zip: empty (give at least one key with its values)")
+        length = None
+        first = None
+        for key, values in z.items():
+            _key_name("grid.zip", key)
+            _value_list("grid.zip.%s" % key, values)
+            if length is None:
+                length, first = len(values), key
+            elif len(values) != length:
+                raise SweepError("grid.zip.%s: %d values, but grid.zip.%s has %d (zipped "
+                                 "lists go together and must have the same length)" % (
+                                     key, len(values), first, length))
+            self._add_key("grid.zip.%s" % key, key)
+        self.axes.append([{k: z[k][i] for k in z} for i in range(length)])
+
+    def _read_variants(self, variants):
+        """grid.variants: a list of named override sets, one axis (grid key `variant`)."""
+        if not isinstance(variants, list):
+            raise SweepError("grid.variants: must be a list of {name, label, set}, got %s" %
+                             _type_name(variants))
+        if not variants:
+            raise SweepError("grid.variants: empty list")
+        self._add_key("grid.variants", VARIANT_KEY)
+        axis, keys = [], set()
+        for i, v in enumerate(variants):
+            where = "grid.variants[%d]" % i
+            _check_keys(where, v, {"name", "label", "set"}, required=("name",))
+            name = _string(where + ".name", v["name"])
+            if not NAME_VALUE.match(name):
+                raise SweepError("%s.name: '%s' must be letters, digits, '.', '_' and '-' only "
+                                 "(it is part of the run name)" % (where, name))
+            if name in self.variant_labels:
+                raise SweepError("%s.name: '%s' appears twice" % (where, name))
+            self.variant_labels[name] = _string(where + ".label", v["label"]) \
+                if "label" in v else name
+            overrides = v.get("set", {}) or {}
+            _check_keys(where + ".set", overrides, set(overrides)
+                        if isinstance(overrides, dict) else set())
+            overrides = _flatten(where + ".set", overrides)
+            for key in overrides:
+                if key.startswith(TAG_PREFIX) or key == SCENE_KEY:
+                    raise SweepError("%s.set.%s: a variant sets scene keys only" % (where, key))
+            keys.update(overrides)
+            axis.append({VARIANT_KEY: name, "__set__": overrides})
+        self.axes.append(axis)
+        return keys
 
     def _read_stop(self, stop):
         _check_keys("stop", stop, {"t_end", "steady"}, required=("t_end",))
@@ -481,6 +594,35 @@ class Sweep:
         return {"t_end": self.t_end, "steady": self.steady, "csv_every": self.csv_every,
                 "checkpoint_every": self.checkpoint_every,
                 "steady_tolerance": self.steady_tolerance}
+
+
+def _load_scene(path):
+    try:
+        scene = load_yaml(path)
+    except yaml.YAMLError as e:
+        raise SweepError("scene %s is not valid YAML: %s" % (path, e))
+    if not isinstance(scene, dict):
+        raise SweepError("scene %s: not a mapping" % path)
+    return scene
+
+
+def _load_table(name, base_dir):
+    """The campaign table of `table: FILE.py` (relative to the sweep file): a Python file
+    defining table(runs) -> (header, rows[, notes]) (docs/campaigns.md)."""
+    import importlib.util
+    path = name if os.path.isabs(name) else os.path.join(base_dir, name)
+    if not name.endswith(".py") or not os.path.isfile(path):
+        raise SweepError("table: '%s' is not a Python file (looked for %s)" % (name, path))
+    module_name = "campaign_table_" + re.sub(r"[^A-Za-z0-9_]", "_", os.path.basename(path)[:-3])
+    spec = importlib.util.spec_from_file_location(module_name, path)
+    module = importlib.util.module_from_spec(spec)
+    try:
+        spec.loader.exec_module(module)
+    except Exception as e:  # noqa: BLE001 - any error of the file is the file's
+        raise SweepError("table: %s does not load: %s: %s" % (name, type(e).__name__, e))
+    if not callable(getattr(module, "table", None)):
+        raise SweepError("table: %s defines no function table(runs)" % name)
+    return module
 
 
 def _bad_mapping(where, v):
