@@ -634,9 +634,8 @@ SceneModule NumericsModule(const CoreConditions& c) {
        IntegerKey("numerics.max_steps", 1, 1000000000000L, "steps", "step cap of `ehd_sim run`")
            .Default(1000000)
            .Store(StoreNumerics(&SceneNumerics::max_steps)),
-       NumberKey(
-           "numerics.t_end", LeftOpen(0.0, 1e6), "time unit",
-           "default run length, in the scene's time unit (1/k with shear, mu a / T without)")
+       NumberKey("numerics.t_end", LeftOpen(0.0, 1e6), "time unit",
+                 "default run length, in the scene's time unit (1/k with shear, mu a / T without)")
            .Default(10.0)
            .Store(StoreNumerics(&SceneNumerics::t_end)),
        NumberKey("numerics.area_drift_limit", LeftOpen(0.0, 1.0), "1",
