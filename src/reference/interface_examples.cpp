@@ -4,12 +4,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 namespace ehd {
 namespace {
 
 using Vec = Eigen::Vector2d;
+
+// r = 0.5 + amplitude sin(5 t) about (0.02, 0.01): the "star" examples.
+std::function<Vec(double)> FivePetalStar(double amplitude) {
+  return [amplitude](double t) {
+    const double r = 0.5 + amplitude * std::sin(5 * t);
+    return Vec(0.02 + r * std::cos(t), 0.01 + r * std::sin(t));
+  };
+}
 
 std::function<Vec(double)> Circle(Vec centre, double radius) {
   return [=](double t) { return Vec(centre + radius * Vec(std::cos(t), std::sin(t))); };
@@ -120,28 +129,19 @@ InterfaceExample MakeInterfaceExample(const std::string& name) {
     SetSmoothPair(e);
   } else if (name == "star") {
     e.description = "five-petal star r=0.5+0.1 sin(5t) at (0.02,0.01), smooth phi+- (ours)";
-    e.curve = [](double t) {
-      const double r = 0.5 + 0.1 * std::sin(5 * t);
-      return Vec(0.02 + r * std::cos(t), 0.01 + r * std::sin(t));
-    };
+    e.curve = FivePetalStar(0.1);
     SetSmoothPair(e);
   } else if (name == "star_tight") {
     e.description =
         "five-petal star r=0.5+0.18 sin(5t) at (0.02,0.01), troughs of curvature radius 0.0245 "
         "(h at N = 82), smooth phi+- (ours)";
-    e.curve = [](double t) {
-      const double r = 0.5 + 0.18 * std::sin(5 * t);
-      return Vec(0.02 + r * std::cos(t), 0.01 + r * std::sin(t));
-    };
+    e.curve = FivePetalStar(0.18);
     SetSmoothPair(e);
   } else if (name == "star_sharp") {
     e.description =
         "five-petal star r=0.5+0.2 sin(5t) at (0.02,0.01), petal amplitude 0.4 of the mean radius, "
         "troughs of curvature radius 0.0191 (2 h at N = 209), smooth phi+- (ours)";
-    e.curve = [](double t) {
-      const double r = 0.5 + 0.2 * std::sin(5 * t);
-      return Vec(0.02 + r * std::cos(t), 0.01 + r * std::sin(t));
-    };
+    e.curve = FivePetalStar(0.2);
     SetSmoothPair(e);
   } else if (name == "biconcave") {
     e.description = "biconcave (Evans-Fung profile, R=0.7, dimple 0.1 thick) at (0.02,0.01) (ours)";
