@@ -5,8 +5,8 @@
 // rotation), so its stresslet is the rigid one. The immersed boundary's force is smeared over the
 // kernel's support, so the fluid sees a larger body: S = S_exact (a_eff / a)^D with a_eff = a +
 // delta h (docs/validation_3d.md, "The immersed boundary's effective radius"; issue #31). The test
-// checks the diagnostic and that the effective radius converges to a at the first order the
-// measurements show: a_eff / a - 1 at two resolutions, its observed order, and its size.
+// checks the diagnostic against the exact value: the effective radius lies between the markers and
+// the kernel's half-support (0 < delta < 2) and converges to a at least at first order.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -39,11 +39,15 @@ TEST(Stresslet, StiffCylinderApproachesTheRigidValueAtFirstOrder) {
         RadiusExcess("capsule_shear", {"Ca=0.002", "E_b=0.05", "N=" + std::to_string(n),
                                        "M=" + std::to_string(n), "numerics.membrane_substeps=4"}));
   }
-  EXPECT_GT(excess[0], 0.08);
-  EXPECT_LT(excess[0], 0.16);  // a_eff = a + 0.96 h at a = 8
+  // The force is spread over the kernel's half-support 2 h on each side: the body the fluid sees
+  // lies between the marker surface and that, 0 < a_eff - a < 2 h, at every resolution.
+  const double h_over_a[2] = {1.0 / 8, 1.0 / 16};
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_GT(excess[i], 0.0);
+    EXPECT_LT(excess[i], 2.0 * h_over_a[i]) << "a = " << 1.0 / h_over_a[i];
+  }
   const double order = std::log2(excess[0] / excess[1]);
   EXPECT_GT(order, 0.6) << excess[0] << " " << excess[1];
-  EXPECT_LT(order, 1.3) << excess[0] << " " << excess[1];
 }
 
 TEST(Stresslet, StiffSphereApproachesTheRigidValueAtFirstOrder) {
@@ -56,11 +60,13 @@ TEST(Stresslet, StiffSphereApproachesTheRigidValueAtFirstOrder) {
         {"Ca=0.002", "E_b=0", "N=" + std::to_string(n), "geometry.half_width=4",
          "mesh_subdivisions=" + std::to_string(level), "numerics.membrane_substeps=4"}));
   }
-  EXPECT_GT(excess[0], 0.18);
-  EXPECT_LT(excess[0], 0.28);
+  const double h_over_a[2] = {1.0 / 4, 1.0 / 6};
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_GT(excess[i], 0.0);
+    EXPECT_LT(excess[i], 2.0 * h_over_a[i]) << "a = " << 1.0 / h_over_a[i];
+  }
   const double order = std::log(excess[0] / excess[1]) / std::log(1.5);
   EXPECT_GT(order, 0.8) << excess[0] << " " << excess[1];
-  EXPECT_LT(order, 1.6) << excess[0] << " " << excess[1];
 }
 
 }  // namespace
