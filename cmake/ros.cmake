@@ -26,32 +26,24 @@ if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
   find_package(rostest REQUIRED)
   file(GLOB EHD_ROSTESTS RELATIVE ${CMAKE_CURRENT_SOURCE_DIR} CONFIGURE_DEPENDS
        ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/*.test)
-  # scripts/run returns the node's exit status (roslaunch does not).
-  add_test(NAME ros_exit_codes COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/exit_codes.sh)
-  set_tests_properties(ros_exit_codes PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
-                       LABELS "ros;integration")
-  # scripts/run's output comes live through a pipe; it prints no cmake lines when up to date.
-  add_test(NAME ros_live_output COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/live_output_test.py)
-  set_tests_properties(ros_live_output PROPERTIES RUN_SERIAL TRUE TIMEOUT 600
-                       LABELS "ros;integration")
-  # With a kept roscore, no launch or rosrun takes an earlier run's parameters silently.
-  add_test(NAME ros_stale_parameters
-           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/stale_parameters_test.py)
-  set_tests_properties(ros_stale_parameters PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
-                       LABELS "ros;integration")
-  # A relative bag path is taken from the caller's directory (not ROS_HOME).
-  add_test(NAME ros_bag_path COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/bag_path_test.py)
-  set_tests_properties(ros_bag_path PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
-                       LABELS "ros;integration")
-  # A recording logs its bytes per state, MB/s and free space, and warns before the disk fills.
-  add_test(NAME ros_recording_rate
-           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/recording_rate_test.py)
-  set_tests_properties(ros_recording_rate PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
-                       LABELS "ros;integration")
-  # 3D: the progress line and summary print D_z and the volume drift (D_xy, theta with shear).
-  add_test(NAME ros_measures_3d COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/measures_3d_test.py)
-  set_tests_properties(ros_measures_3d PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
-                       LABELS "ros;integration")
+  # Script tests of the whole node, one master each (so they run alone: RUN_SERIAL):
+  #   ros_exit_codes: scripts/run returns the node's exit status (roslaunch does not);
+  #   ros_live_output: scripts/run's output comes live through a pipe, no cmake lines when up to
+  #     date; ros_stale_parameters: with a kept roscore, no launch or rosrun takes an earlier
+  #     run's parameters silently; ros_bag_path: a relative bag path is the caller's directory's;
+  #   ros_recording_rate: a recording logs its bytes per state, MB/s and free space, and warns
+  #     before the disk fills; ros_measures_3d: 3D progress lines show D_z and the volume drift.
+  foreach(pair "exit_codes:exit_codes.sh" "live_output:live_output_test.py"
+               "stale_parameters:stale_parameters_test.py" "bag_path:bag_path_test.py"
+               "recording_rate:recording_rate_test.py" "measures_3d:measures_3d_test.py")
+    string(REPLACE ":" ";" parts ${pair})
+    list(GET parts 0 name)
+    list(GET parts 1 script)
+    add_test(NAME ros_${name} COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/${script})
+    set_tests_properties(ros_${name} PROPERTIES RUN_SERIAL TRUE TIMEOUT 300
+                         LABELS "ros;integration")
+  endforeach()
+  set_tests_properties(ros_live_output PROPERTIES TIMEOUT 600)
   # One launch that takes scene:=, thin includes of it per scene, doc= on every argument.
   add_test(NAME ros_launch_files COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/launch_files_test.py)
   set_tests_properties(ros_launch_files PROPERTIES TIMEOUT 300 LABELS "ros;integration")
