@@ -23,7 +23,10 @@ class ResetBagTest(unittest.TestCase):
         rospy.wait_for_service("/ehd_capsule/reset", timeout=10)
         self.assertTrue(rospy.ServiceProxy("/ehd_capsule/reset", Trigger)().success)
         end = time.time() + 30
-        while time.time() < end and not os.path.exists(path):
+        # The first bag is renamed when closed, then the numbered one opened: wait for both (on a
+        # loaded machine the check came between the two).
+        while time.time() < end and not (os.path.exists(path) and
+                                         os.path.exists(second + ".active")):
             time.sleep(0.1)
         self.assertTrue(os.path.exists(path), "first bag not closed under its name")
         self.assertTrue(os.path.exists(second + ".active"), "no numbered bag after the reset")
