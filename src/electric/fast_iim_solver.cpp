@@ -386,9 +386,9 @@ void FastIimSolver::ChooseUnknowns(const ClosedCurve& curve) {
       }
       arc += curve.SegmentArcLength(k);
     }
-    weighted_basis_ = basis_;
-    for (int k = 0; k < m; ++k) weighted_basis_.row(k) *= arc_weight_[k] / perimeter_;
-    gram_.compute(weighted_basis_.transpose() * basis_);
+    std::vector<double> test_weight(m);
+    for (int k = 0; k < m; ++k) test_weight[k] = arc_weight_[k] / perimeter_;
+    fourier_unknowns_.Set(basis_, test_weight);
   }
   every_marker_ = !fourier_ && unknowns_ == m;
   if (unknowns_ < 4) {
@@ -401,116 +401,75 @@ void FastIimSolver::ChooseUnknowns(const ClosedCurve& curve) {
   }
 }
 
+namespace {
+
+// ControlBasis::kSplineControls: G at the control markers, the periodic spline through them at
+// the others; the residual is sampled at the controls.
+class SplineControlUnknowns final : public InterfaceUnknowns {
+ public:
+  SplineControlUnknowns(const ClosedCurve& curve, const std::vector<int>& control,
+                        const std::vector<double>& knots)
+      : curve_(curve), control_(control), knots_(knots) {}
+  int count() const override { return static_cast<int>(control_.size()); }
+  void Expand(const double* x, double* g) const override {
+    values_.assign(x, x + count());
+    spline_.Fit(knots_, curve_.period(), values_);
+    for (int k = 0; k < curve_.size(); ++k) g[k] = spline_.Value(curve_.knot(k));
+  }
+  void Restrict(const double* r, double* rx) const override {
+    for (int c = 0; c < count(); ++c) rx[c] = r[control_[c]];
+  }
+  void Project(const double* g, double* x) const override { Restrict(g, x); }
+
+ private:
+  const ClosedCurve& curve_;
+  const std::vector<int>& control_;
+  const std::vector<double>& knots_;
+  mutable PeriodicCubicSpline spline_;
+  mutable std::vector<double> values_;
+};
+
+}  // namespace
+
 GmresResult FastIimSolver::SolveSchurSystem(const ClosedCurve& curve, std::vector<double>& g) {
   const int m = curve.size();
-  g_full_.resize(m);
-  r_full_.resize(m);
-  const bool fourier = fourier_, every_marker = every_marker_;
-  const int mc = unknowns_;
-  auto expand = [&](const double* xc) {
-    if (every_marker) {
-      std::copy(xc, xc + m, g_full_.begin());
-      return;
-    }
-    if (fourier) {
-      Eigen::Map<Eigen::VectorXd>(g_full_.data(), m) =
-          basis_ * Eigen::Map<const Eigen::VectorXd>(xc, mc);
-      return;
-    }
-    scratch_.assign(xc, xc + mc);
-    control_spline_.Fit(control_knots_, curve.period(), scratch_);
-    for (int k = 0; k < m; ++k) g_full_[k] = control_spline_.Value(curve.knot(k));
-  };
-  auto restrict_to_unknowns = [&](const double* full, double* rc) {
-    if (fourier) {
-      Eigen::Map<Eigen::VectorXd>(rc, mc) =
-          weighted_basis_.transpose() * Eigen::Map<const Eigen::VectorXd>(full, m);
-    } else {
-      for (int c = 0; c < mc; ++c) rc[c] = full[control_[c]];
-    }
-  };
-  auto residual = [&](const double* xc, bool with_data, double* rc) {
-    expand(xc);
-    Residual(curve, g_full_.data(), with_data, r_full_.data());
-    restrict_to_unknowns(r_full_.data(), rc);
-  };
-  // The restriction of a residual that is 1 at every marker (the deflation's shift).
-  Eigen::VectorXd restricted_one(mc);
-  {
-    std::vector<double> ones(m, 1.0);
-    restrict_to_unknowns(ones.data(), restricted_one.data());
-  }
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(mc);
-  const bool has_guess = static_cast<int>(g.size()) == m;
-  if (has_guess) {
-    if (fourier) {
-      // Weighted least-squares coefficients of the guess.
-      x = gram_.solve(weighted_basis_.transpose() * Eigen::Map<const Eigen::VectorXd>(g.data(), m));
-    } else {
-      for (int c = 0; c < mc; ++c) x[c] = g[control_[c]];
-    }
-  }
+  const PointUnknowns every_marker(m);
+  const SplineControlUnknowns controls(curve, control_, control_knots_);
+  const InterfaceUnknowns& unknowns =
+      every_marker_ ? static_cast<const InterfaceUnknowns&>(every_marker)
+                    : (fourier_ ? static_cast<const InterfaceUnknowns&>(fourier_unknowns_)
+                                : static_cast<const InterfaceUnknowns&>(controls));
   // Mean deflation (FastIimOptions::deflate_mean): with R_k = phi_n^-_k + c G_k - v_k/[sigma],
   // c = sigma^+/[sigma], and sum_k phi_n^-_k dl_k = flux imposed exactly, R = 0 implies
-  // mean(G) = mu. Solving R(G) - (mean(G) - mu) = 0 instead (a consistent rank-one term) moves
-  // the near-null eigenvalue ~c of the equilibrium-density mode to ~c - 1.
-  const bool deflate = sigma_minus_ > sigma_plus_ && options_.deflate_mean;
-  const double jump_sigma = sigma_plus_ - sigma_minus_;
-  double mean_target = 0.0;
-  if (deflate) {
+  // mean(G) = mu (interface_schur_system.h).
+  MeanDeflation deflation;
+  deflation.active = sigma_minus_ > sigma_plus_ && options_.deflate_mean;
+  if (deflation.active) {
+    const double jump_sigma = sigma_plus_ - sigma_minus_;
     double mean_v = 0.0;
     for (int k = 0; k < m; ++k) mean_v += arc_weight_[k] * v_[k];
     mean_v /= perimeter_;
-    mean_target = (mean_v / jump_sigma - interior_flux_ / perimeter_) / (sigma_plus_ / jump_sigma);
+    deflation.target =
+        (mean_v / jump_sigma - interior_flux_ / perimeter_) / (sigma_plus_ / jump_sigma);
+    deflation.mean = [&](const double* gm) {
+      double s = 0.0;
+      for (int k = 0; k < m; ++k) s += arc_weight_[k] * gm[k];
+      return s / perimeter_;
+    };
   }
-  auto mean_of = [&](const double* xc) {
-    expand(xc);
-    double s = 0.0;
-    for (int k = 0; k < m; ++k) s += arc_weight_[k] * g_full_[k];
-    return s / perimeter_;
-  };
-  auto apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-    out.resize(mc);
-    residual(in.data(), false, out.data());
-    if (deflate) {
-      out -= mean_of(in.data()) * restricted_one;
-    }
-  };
-  // Warm path: solve A dx = -R(x0) from dx = 0 (one Poisson solve for R(x0)), relative to the
-  // |b| = |R(0)| of the last cold solve, which changes only by O(interface displacement)
-  // between time steps. Cold path: b = -R(0) (one solve), GMRES from the guess (if any).
-  const bool warm = has_guess && options_.warm_start_refresh > 0 && reference_norm_ > 0.0 &&
-                    reference_markers_ == mc && warm_solves_ < options_.warm_start_refresh;
-  GmresResult r;
-  if (warm) {
-    Eigen::VectorXd rhs(mc), dx = Eigen::VectorXd::Zero(mc);
-    residual(x.data(), true, rhs.data());
-    rhs = -rhs;
-    if (deflate) rhs -= (mean_target - mean_of(x.data())) * restricted_one;
-    r = gmres_.Solve(apply, rhs, dx, options_.gmres, reference_norm_);
-    x += dx;
-    ++warm_solves_;
-  } else {
-    Eigen::VectorXd b(mc);
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(mc);
-    residual(zero.data(), true, b.data());
-    b = -b;
-    if (deflate) b -= mean_target * restricted_one;
-    r = gmres_.Solve(apply, b, x, options_.gmres);
-    reference_norm_ = r.reference;
-    reference_markers_ = mc;
-    warm_solves_ = 0;
-  }
+  const InterfaceSchurSolver::PointResidual residual =
+      [&](const double* gm, bool with_data, double* r) { Residual(curve, gm, with_data, r); };
+  const GmresResult r = schur_.Solve(unknowns, m, residual, deflation, options_.gmres,
+                                     options_.warm_start_refresh, g);
   if (!r.converged) {
     std::ostringstream msg;
     msg << "FastIimSolver: GMRES did not converge: " << r.iterations << " iterations, residual "
         << r.residual << " > tolerance " << options_.gmres.tolerance
         << " x |b| = " << options_.gmres.tolerance * r.reference << " (sigma- = " << sigma_minus_
-        << ", sigma+ = " << sigma_plus_ << ", " << m << " markers, " << mc << " control)";
+        << ", sigma+ = " << sigma_plus_ << ", " << m << " markers, " << unknowns.count()
+        << " control)";
     throw SolverError(msg.str());
   }
-  expand(x.data());
-  g = g_full_;
   return r;
 }
 

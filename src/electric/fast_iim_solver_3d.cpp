@@ -483,30 +483,18 @@ GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
   const std::vector<double> third = VertexThirdAreas(surface);
   Eigen::VectorXd test_weight(nv);
   for (int i = 0; i < nv; ++i) test_weight(i) = third[i] / area;
-  const int k = static_cast<int>(basis_.cols());
-  // R(G) = dn^-(G) + scale G - v/[sigma]; deflated: A G - (m.G) 1 = -R(0) - mu 1; tested with Y.
-  PotentialAndNormalDerivative(std::vector<double>(nv, 0.0).data(), true, phi_work_, dn_work_);
-  Eigen::VectorXd rhs_vertex(nv);
-  for (int v = 0; v < nv; ++v) rhs_vertex(v) = -(dn_work_[v] - v_[v] / jump) - mu;
-  const Eigen::VectorXd b = basis_.transpose() * test_weight.cwiseProduct(rhs_vertex);
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(k);
-  if (static_cast<int>(g.size()) == nv) {  // warm start: the guess projected on the basis
-    const Eigen::VectorXd gv = Eigen::Map<const Eigen::VectorXd>(g.data(), nv);
-    x = basis_.transpose() * basis_sphere_area_.cwiseProduct(gv);
-  }
-  std::vector<double> gv(nv);
-  const RestartedGmres::MatVec apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-    const Eigen::VectorXd gvec = basis_ * in;
-    for (int v = 0; v < nv; ++v) gv[v] = gvec(v);
-    PotentialAndNormalDerivative(gv.data(), false, phi_work_, dn_work_);
-    const double mean = mean_weight.dot(gvec.head(mean_weight.size()));
-    Eigen::VectorXd r(nv);
-    for (int v = 0; v < nv; ++v) r(v) = dn_work_[v] + scale * gvec(v) - mean;
-    out = basis_.transpose() * test_weight.cwiseProduct(r);
+  GalerkinUnknowns harmonics;
+  harmonics.Set(basis_, test_weight, basis_sphere_area_);
+  // R(G) = dn^-(G) + scale G - v/[sigma], tested with Y, the mean deflated to mu.
+  MeanDeflation deflation;
+  deflation.active = true;
+  deflation.target = mu;
+  deflation.mean = [&](const double* gv) {
+    return mean_weight.dot(Eigen::Map<const Eigen::VectorXd>(gv, mean_weight.size()));
   };
-  const GmresResult result = gmres_.Solve(apply, b, x, options_.gmres);
-  const Eigen::VectorXd gvec = basis_ * x;
-  g.assign(gvec.data(), gvec.data() + nv);
+  const GmresResult result =
+      schur_.Solve(harmonics, nv, SchurResidual(), deflation, options_.gmres, 0, g);
+  const Eigen::Map<const Eigen::VectorXd> gvec(g.data(), nv);
   const double gmax = std::max(gvec.cwiseAbs().maxCoeff(), 1e-300);
   flux_balance_error_ = mu_error / gmax;
   if (result.converged && flux_balance_error_ > options_.max_flux_balance_error) {
@@ -574,26 +562,22 @@ void FastIimSolver3D::SetUpData(const TriangleMesh& surface, const InterfaceProb
   AddBoundaryDataToRhs(grid3, poisson_.boundaries(), problem.boundary, rhs_base_);
 }
 
-GmresResult FastIimSolver3D::SolveAtVertices(int nv, std::vector<double>& g) {
+InterfaceSchurSolver::PointResidual FastIimSolver3D::SchurResidual() {
   const double jump = sigma_plus_ - sigma_minus_;
   const double scale = sigma_plus_ / jump;
-  // R(G) = dn^-(G) + scale G - v/[sigma]; A G = R(G) - R(0), b = -R(0).
-  PotentialAndNormalDerivative(std::vector<double>(nv, 0.0).data(), true, phi_work_, dn_work_);
-  Eigen::VectorXd b(nv), x(nv);
-  for (int v = 0; v < nv; ++v) {
-    b(v) = -(dn_work_[v] - v_[v] / jump);
-    x(v) = g[v];
-  }
-  std::vector<double> gv(nv);
-  const RestartedGmres::MatVec apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-    for (int v = 0; v < nv; ++v) gv[v] = in(v);
-    PotentialAndNormalDerivative(gv.data(), false, phi_work_, dn_work_);
-    out.resize(nv);
-    for (int v = 0; v < nv; ++v) out(v) = dn_work_[v] + scale * in(v);
+  return [this, jump, scale](const double* g, bool with_data, double* r) {
+    PotentialAndNormalDerivative(g, with_data, phi_work_, dn_work_);
+    const int nv = static_cast<int>(dn_work_.size());
+    for (int v = 0; v < nv; ++v) r[v] = dn_work_[v] + scale * g[v];
+    if (with_data) {
+      for (int v = 0; v < nv; ++v) r[v] -= v_[v] / jump;
+    }
   };
-  const GmresResult r = gmres_.Solve(apply, b, x, options_.gmres);
-  for (int v = 0; v < nv; ++v) g[v] = x(v);
-  return r;
+}
+
+GmresResult FastIimSolver3D::SolveAtVertices(int nv, std::vector<double>& g) {
+  return schur_.Solve(PointUnknowns(nv), nv, SchurResidual(), MeanDeflation(), options_.gmres, 0,
+                      g);
 }
 
 void FastIimSolver3D::TangentialGradients(const std::vector<double>& phi) {

@@ -14,7 +14,8 @@
 //   sigma^+ > sigma^-:  R = phi_n^- + (sigma^+/[sigma]) G - v/[sigma]
 //   sigma^- > sigma^+:  R = phi_n^+ + (sigma^-/[sigma]) G - v/[sigma]
 // R is affine in G; restarted GMRES solves R(G) = 0 with the mat-vec R(G) - R(0), one Poisson
-// solve each (eq. (59)-(61)). sigma^+ = sigma^-: G = v / sigma is known and no GMRES is run.
+// solve each (eq. (59)-(61)), in the Schur solver shared with the 3D solver
+// (interface_schur_system.h; this file gives R and the unknowns). sigma^+ = sigma^-: G = v / sigma is known and no GMRES is run.
 // [f/sigma] and [d_xi(f/sigma)] in J are estimated at the markers by one-sided weighted
 // least-squares fits of each side's grid values of F (NormalDerivativeFit::SideExtrapolation,
 // O(h^3) and O(h^2)). Dirichlet box sides use the second-order ghost
@@ -53,6 +54,7 @@
 #include "ehd_capsule/electric/gmres.h"
 #include "ehd_capsule/electric/interface_classification.h"
 #include "ehd_capsule/electric/interface_problem.h"
+#include "ehd_capsule/electric/interface_schur_system.h"
 #include "ehd_capsule/electric/normal_derivative_fit.h"
 #include "ehd_capsule/geometry/closed_curve.h"
 
@@ -176,7 +178,7 @@ class FastIimSolver {
   double interior_flux() const { return interior_flux_; }
   // Forget |b| of the last cold solve (call when the data change abruptly, e.g. a new applied
   // field); the next Solve() is cold.
-  void ResetWarmStart() { reference_norm_ = 0.0; }
+  void ResetWarmStart() { schur_.ResetWarmStart(); }
   // Number of Poisson solves in the last Solve().
   int poisson_solves() const { return poisson_solves_; }
 
@@ -217,7 +219,7 @@ class FastIimSolver {
   FastIimOptions options_;
   InterfaceClassification classes_;
   NormalDerivativeFit fit_;
-  RestartedGmres gmres_;
+  InterfaceSchurSolver schur_;
   double sigma_minus_ = 1.0, sigma_plus_ = 1.0;
   std::vector<double> v_;         // [sigma phi_n] at the markers
   std::vector<double> rhs_base_;  // F + side data
@@ -239,17 +241,13 @@ class FastIimSolver {
   bool fourier_ = false;       // the unknowns are Fourier coefficients
   bool every_marker_ = false;  // the unknowns are G at every marker
   int unknowns_ = 0;
-  std::vector<double> control_knots_, g_full_, r_full_;
-  Eigen::MatrixXd basis_, weighted_basis_;  // ControlBasis::kFourier: M x unknowns
-  Eigen::LDLT<Eigen::MatrixXd> gram_;
-  PeriodicCubicSpline control_spline_;
+  std::vector<double> control_knots_;
+  Eigen::MatrixXd basis_;  // ControlBasis::kFourier: M x unknowns
+  GalerkinUnknowns fourier_unknowns_;
   std::vector<double> arc_weight_;  // dl_k at the markers
   double perimeter_ = 0.0;
   double interior_flux_ = 0.0;  // integral of f^-/sigma^- over Omega^-
   int poisson_solves_ = 0;
-  double reference_norm_ = 0.0;  // |R(0)| of the last cold solve
-  int reference_markers_ = 0;
-  int warm_solves_ = 0;
   std::unique_ptr<FastIimSolver> coarse_;  // Verify(): the grid coarsened twice
   std::vector<double> coarse_g_, coarse_phi_;
 };

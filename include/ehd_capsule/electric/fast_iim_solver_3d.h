@@ -16,7 +16,8 @@
 // normal_derivative_fit.h in three variables: 20 terms; a quadratic, 10 terms, where the cubic is
 // rank deficient), and phi_n^+ = phi_n^- + G. The Schur system is the scaled flux residual
 //   R(G) = phi_n^- + (sigma^+/[sigma]) G - v/[sigma]   (= ([sigma phi_n] - v)/[sigma]),
-// solved by restarted GMRES with the mat-vec R(G) - R(0), one Poisson solve each; for
+// solved by restarted GMRES with the mat-vec R(G) - R(0), one Poisson solve each (the Schur
+// solver shared with the 2D solver, interface_schur_system.h); for
 // sigma^+ = sigma^- G = v/sigma and one solve suffices.
 //
 // Departures from the text and from the 2D solver: J includes the cubic term (as in 2D; the
@@ -64,6 +65,7 @@
 #include "ehd_capsule/electric/fast_poisson_solver_3d.h"
 #include "ehd_capsule/electric/gmres.h"
 #include "ehd_capsule/electric/interface_problem.h"
+#include "ehd_capsule/electric/interface_schur_system.h"
 #include "ehd_capsule/electric/surface_classification_3d.h"
 #include "ehd_capsule/geometry/local_surface_fit.h"
 
@@ -167,6 +169,8 @@ class FastIimSolver3D {
   void CheckThinParts(const TriangleMesh& surface) const;
   // w, v, the data part of J at the band nodes and F = f / sigma with the face data.
   void SetUpData(const TriangleMesh& surface, const InterfaceProblem3D& problem);
+  // R(G) at the vertices for the Schur solver: dn^-(G) + (sigma^+/[sigma]) G (- v/[sigma]).
+  InterfaceSchurSolver::PointResidual SchurResidual();
   // GMRES on the Schur system with G at every vertex (g: guess in, solution out).
   GmresResult SolveAtVertices(int nv, std::vector<double>& g);
   // grad_s phi^- from the fits' tangent rows and grad_s phi^+ = grad_s phi^- + grad_s w.
@@ -227,7 +231,7 @@ class FastIimSolver3D {
   std::vector<double> w_, v_;
   double sigma_minus_ = 1, sigma_plus_ = 1;
   int poisson_solves_ = 0;
-  RestartedGmres gmres_;
+  InterfaceSchurSolver schur_;
   // Harmonic basis (cached by level and degree): Y at the vertices, the unit icosphere's vertex
   // areas (for projecting a warm start).
   std::vector<std::vector<TriangleMesh::Triangle>> icosphere_triangles_;
