@@ -29,6 +29,7 @@ void Body<D>::ResetTo(const Points& positions) {
   for (auto& source : sources) source->load.setZero(D, n);
   load.setZero(D, n);
   force.setZero(D, n);
+  coupling.resize(D, 0);
   if constexpr (D == 2) {
     initial_measure = shape.curve.Area();
   } else {

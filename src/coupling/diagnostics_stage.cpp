@@ -76,11 +76,12 @@ void DiagnosticsStage<D>::MeasureInto(const Shape& d, SimulationState& s) const 
   s.inclination = d.inclination;
   s.stresslet_xy = 0.0;
   if (units_.shear_rate > 0.0 && body.force.cols() == n) {
-    // -sum sym(r F)_xy over the spread forces (membrane plus every force term).
+    // -sum sym(r F)_xy over the spread forces (membrane plus every force term), at the points
+    // they were spread at.
     double sxy = 0.0;
     for (int k = 0; k < n; ++k) {
-      const double rx = body.positions()(0, k) - d.centroid.x();
-      const double ry = body.positions()(1, k) - d.centroid.y();
+      const double rx = body.coupling_points()(0, k) - d.centroid.x();
+      const double ry = body.coupling_points()(1, k) - d.centroid.y();
       sxy -= 0.5 * (rx * body.force(1, k) + ry * body.force(0, k));
     }
     s.stresslet_xy = sxy / (units_.viscosity * units_.shear_rate * std::pow(units_.radius, D));

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <sstream>
 
+#include "ehd_capsule/coupling/retracted_points.h"
 #include "ehd_capsule/geometry/mesh_relaxation.h"
 
 namespace ehd {
@@ -47,6 +48,12 @@ std::string MarkerStage<D>::Describe() const {
                    : "interpolate u, ")
       << (advectors_.front().scheme() == MarkerIntegrator::kAdamsBashforth2 ? "Adams-Bashforth 2"
                                                                             : "forward Euler");
+  if (scene_.numerics.ib_retraction > 0.0) {
+    out << (scene_.numerics.ib_extrapolate_velocity != 0
+                ? ", u interpolated at the retracted points and extrapolated to the points by the "
+                  "body's velocity gradient"
+                : ", u interpolated at the retracted points");
+  }
   if (D == 2 && scene_.numerics.redistribute_markers > 0.0) {
     out << ", re-spaced evenly when max/min spacing > " << scene_.numerics.redistribute_markers;
   }
@@ -82,7 +89,21 @@ void MarkerStage<D>::Run(long step) {
 
 template <int D>
 void MarkerStage<D>::Move(long step, int index, Body<D>& body) {
-  ib_.Interpolate(VelocityOf<D>(fluid_), body.positions(), body.U);
+  const double retraction = scene_.numerics.ib_retraction * grid_.h;
+  if (retraction > 0.0) {
+    // The same points the spread stage used (coupling/retracted_points.h).
+    RetractAlongNormals(body.shape, retraction, body.coupling);
+    ib_.Interpolate(VelocityOf<D>(fluid_), body.coupling, body.U);
+    if (scene_.numerics.ib_extrapolate_velocity != 0) {
+      try {
+        ExtrapolateToPoints(body.coupling, body.positions(), body.U);
+      } catch (const std::exception& e) {
+        FailStep(step, e.what());
+      }
+    }
+  } else {
+    ib_.Interpolate(VelocityOf<D>(fluid_), body.positions(), body.U);
+  }
   scratch_ = body.positions();
   PointAdvector<D>& advector = advectors_[index];
   if constexpr (D == 3) {

@@ -1,6 +1,9 @@
 // The spread stage (coupling/stages/spread_stage.h).
 #include "ehd_capsule/coupling/stages/spread_stage.h"
 
+#include <sstream>
+
+#include "ehd_capsule/coupling/retracted_points.h"
 #include "ehd_capsule/ib/marker_update.h"
 
 namespace ehd {
@@ -18,11 +21,19 @@ std::string SpreadStage<D>::Describe() const {
   }
   if constexpr (D == 2) {
     return "cosine delta (eq. 103), spread the sum of the force sources (" + sources + ") dl" +
-           (scene_.has_shear() ? ", periodic in x" : "");
+           (scene_.has_shear() ? ", periodic in x" : "") + Retraction();
   } else {
     return "cosine delta (eq. 103) as a product in 3D, spread the sum of the force sources (" +
-           sources + ") per vertex";
+           sources + ") per vertex" + Retraction();
   }
+}
+
+template <int D>
+std::string SpreadStage<D>::Retraction() const {
+  if (!(scene_.numerics.ib_retraction > 0.0)) return "";
+  std::ostringstream out;
+  out << ", at the points retracted " << scene_.numerics.ib_retraction << " h along their normals";
+  return out.str();
 }
 
 template <int D>
@@ -37,9 +48,13 @@ void SpreadStage<D>::Run(long) {
       body.force = body.load;
     }
   }
+  const double retraction = scene_.numerics.ib_retraction * ib_.grid().h;
+  for (Body<D>& body : data_.bodies) {
+    if (retraction > 0.0) RetractAlongNormals(body.shape, retraction, body.coupling);
+  }
   fluid_.ClearForce();
   for (const Body<D>& body : data_.bodies) {
-    ib_.Spread(body.positions(), body.force, ForceOf<D>(fluid_));  // adds
+    ib_.Spread(body.coupling_points(), body.force, ForceOf<D>(fluid_));  // adds
   }
 }
 

@@ -283,6 +283,18 @@ Eigen::Vector3d Centroid(const TriangleMesh& mesh) {
   return moment / volume;
 }
 
+Eigen::Matrix3Xd AreaWeightedVertexNormals(const TriangleMesh& mesh) {
+  const Eigen::Matrix3Xd& x = mesh.vertices();
+  Eigen::Matrix3Xd normal = Eigen::Matrix3Xd::Zero(3, mesh.vertex_count());
+  for (const auto& t : mesh.triangles()) {
+    const Eigen::Vector3d n =
+        (Column(x, t[1]) - Column(x, t[0])).cross(Column(x, t[2]) - Column(x, t[0]));
+    for (int c = 0; c < 3; ++c) normal.col(t[c]) += n;  // area weighted (|n| = 2 area)
+  }
+  normal.colwise().normalize();
+  return normal;
+}
+
 SurfaceGeometry MeasureSurface(const TriangleMesh& mesh) {
   const Eigen::Matrix3Xd& x = mesh.vertices();
   const int nv = mesh.vertex_count();

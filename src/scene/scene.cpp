@@ -661,6 +661,18 @@ SceneModule NumericsModule(const CoreConditions& c) {
                  "numerics.relax_mesh_every steps)")
            .Otherwise(0.0)
            .Store(StoreNumerics(&SceneNumerics::redistribute_markers)),
+       NumberKey("numerics.ib_retraction", Closed(0.0, 1.5), "cells",
+                 "spread the force and interpolate the velocity at the points moved inward along "
+                 "their normals by this distance: removes the kernel's effective radius "
+                 "(coupling/retracted_points.h, docs/validation_3d.md); 0 = at the points")
+           .Default(0.0)
+           .Store(StoreNumerics(&SceneNumerics::ib_retraction)),
+       IntegerKey("numerics.ib_extrapolate_velocity", 0, 1, "1",
+                  "with numerics.ib_retraction > 0: 1 = move the membrane with the velocity "
+                  "extrapolated to its own position by the body's velocity gradient, 0 = with the "
+                  "velocity at the retracted points (tank-treads slower by (a - delta)/a)")
+           .Default(1)
+           .Store(StoreNumerics(&SceneNumerics::ib_extrapolate_velocity)),
        IntegerKey("numerics.marker_filter_every", 0, 1000000000, "steps",
                   "2D: remove the markers' sawtooth mode every n steps (ib/sawtooth_filter.h); "
                   "3D: the mesh-scale part of the deformation (ib/mesh_scale_filter.h); 0 = off "

@@ -67,7 +67,10 @@ struct Body {
   using Points = PointsOf<D>;
   BodyShape<D> shape;
   Points initial;  // the scene's initial positions
-  Points U;        // the velocity interpolated at the points this step
+  Points U;        // the points' velocity this step (interpolated; coupling/retracted_points.h)
+  // Where the force is spread and the velocity interpolated when the immersed boundary is
+  // retracted (numerics.ib_retraction, set by the spread stage each step); empty: the points.
+  Points coupling;
   // The sources, in the order they add up (unique_ptr: stages keep references to them).
   std::vector<std::unique_ptr<ForceSource<D>>> sources;
   Points load;   // SumLoads: the sum of the sources' loads
@@ -80,6 +83,9 @@ struct Body {
 
   int size() const { return shape.size(); }
   const Points& positions() const { return shape.positions(); }
+  const Points& coupling_points() const {
+    return coupling.cols() == size() ? coupling : positions();
+  }
 
   // A new source at the end of the list (a stage's constructor calls it, in build order).
   ForceSource<D>& AddForceSource(const std::string& name);

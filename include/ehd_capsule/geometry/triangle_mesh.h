@@ -91,6 +91,8 @@ Eigen::Vector3d AreaWeightedMean(const TriangleMesh& mesh, const std::vector<dou
                                  const Eigen::Matrix3Xd& field);
 double EnclosedVolume(const TriangleMesh& mesh);     // (1/6) sum x_a . (x_b x x_c)
 Eigen::Vector3d Centroid(const TriangleMesh& mesh);  // of the enclosed volume
+// Unit outward vertex normals: the area-weighted average of the face normals.
+Eigen::Matrix3Xd AreaWeightedVertexNormals(const TriangleMesh& mesh);
 // The volume (1/6) sum x_a . (x_b x x_c) of the closed surface with vertices x and `triangles`.
 double EnclosedVolume(const Eigen::Matrix3Xd& x,
                       const std::vector<TriangleMesh::Triangle>& triangles);

@@ -99,6 +99,12 @@ struct SceneNumerics {
   // the enclosed volume is the initial one again (geometry/triangle_mesh.h,
   // RestoreEnclosedVolume): the immersed boundary leaks slowly; 0 = off.
   int volume_correction_every = 0;
+  // The immersed boundary's points retracted inward along the normals by this many cells
+  // (coupling/retracted_points.h); 0 = the points themselves (song2019).
+  double ib_retraction = 0;
+  // With a retraction: 1 = the membrane moves with the velocity extrapolated from the retracted
+  // points to its own (the kinematic condition), 0 = with the velocity at the retracted points.
+  int ib_extrapolate_velocity = 1;
   double max_mach = 0.1;  // watchdog: max |u| / c_s
   int threads = 0;        // LBM OpenMP threads (0: OpenMP default)
 };

@@ -26,6 +26,7 @@ class SpreadStage : public StepStage {
   void Restore(CheckpointReader&) override;       // 2D: the arc elements, for the diagnostics
 
  private:
+  std::string Retraction() const;  // ", at the points retracted ..." or ""
   const Scene& scene_;
   const ImmersedBoundaryTransfer<D>& ib_;
   StepData<D>& data_;

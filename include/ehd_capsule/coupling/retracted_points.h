@@ -1,0 +1,36 @@
+// The retracted immersed boundary (issue #42, docs/validation_3d.md "The retracted immersed
+// boundary"): the membrane's force is spread and the fluid velocity interpolated at the points
+// moved inward along their normals by a distance delta,
+//   X_r = X - delta n(X),
+// one point set for both operators, so spreading and interpolation stay adjoint (song2019 eqs.
+// (104), (106) at X_r). The cosine kernel's 4 h support makes the flow go round a body larger
+// than the marker surface (a + 0.7-0.9 h, measured by the stresslet of a rigid sphere and
+// cylinder); retracting the points by about that distance removes it (Breugem, J. Comput. Phys.
+// 231 (2012) 4469, sec. 2.4, for direct forcing; here delta is calibrated on the rigid sphere's
+// and cylinder's stresslets, docs/validation_3d.md).
+//
+// Departure from Breugem (rigid particles, whose velocity is prescribed): a membrane moves with
+// the fluid at its own position, not at X_r (the kinematic condition). The velocity at X_r is
+// extrapolated to X with the body's best-fit velocity gradient A (least squares over the points
+// of U(X_r) = c + A (X_r - mean X_r)):
+//   U(X) = U(X_r) + A (X - X_r) = U(X_r) + delta A n,
+// exact for the linear interior flow of a tank-treading sphere, cylinder or ellipsoid; without
+// it the membrane tank-treads slower by (a - delta) / a.
+#pragma once
+
+#include "ehd_capsule/coupling/body.h"
+
+namespace ehd {
+
+// out = X - distance n at each point (2D: the curve's normal at the marker; 3D: the area-weighted
+// vertex normal).
+template <int D>
+void RetractAlongNormals(const BodyShape<D>& shape, double distance, PointsOf<D>& out);
+
+// U (the velocity at `retracted`) += A (points - retracted), A the least-squares gradient of U
+// over the retracted points. Throws std::invalid_argument when the points do not span D
+// dimensions.
+template <int D>
+void ExtrapolateToPoints(const PointsOf<D>& retracted, const PointsOf<D>& points, PointsOf<D>& U);
+
+}  // namespace ehd
