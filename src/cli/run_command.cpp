@@ -169,24 +169,23 @@ std::string JsonNumber(double v) {
   return text;
 }
 
-// --summary-json is checked before the run (as --csv): a path that cannot be written would
-// otherwise fail only at the end.
-void CheckSummaryWritable(const std::string& path) {
+// Output files written only during or after the run (--summary-json, --checkpoint) are checked
+// before it, as --csv is: `probe` (the file itself, or FILE.tmp) is opened for appending and
+// removed again if it was not there.
+void CheckWritable(const std::string& option, const std::string& path, const std::string& probe) {
   if (path.empty()) return;
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
-    throw std::runtime_error("--summary-json: '" + path + "' is a directory");
+    throw std::runtime_error(option + ": '" + path + "' is a directory, not a file");
   }
-  const std::string tmp = path + ".tmp";
-  const bool existed = std::filesystem::exists(tmp, ec);
+  const bool existed = std::filesystem::exists(probe, ec);
   {
-    std::ofstream probe(tmp, std::ios::app);
-    if (!probe) {
-      throw std::runtime_error("--summary-json: cannot write '" + tmp +
-                               "': " + std::strerror(errno));
+    std::ofstream out(probe, std::ios::app);
+    if (!out) {
+      throw std::runtime_error(option + ": cannot write '" + probe + "': " + std::strerror(errno));
     }
   }
-  if (!existed) std::filesystem::remove(tmp, ec);
+  if (!existed) std::filesystem::remove(probe, ec);
 }
 
 // How a run ended, for --summary-json.
@@ -337,7 +336,13 @@ RunEnd DecideRunEnd(const RunOptions& o, const Simulation& sim, double t_end, lo
 
 int RunScene(const std::vector<std::string>& args) {
   const RunOptions o = ParseRunOptions(args);
-  CheckSummaryWritable(o.summary_path);
+  CheckWritable("--summary-json", o.summary_path, o.summary_path + ".tmp");
+  CheckWritable("--checkpoint", o.checkpoint_path, o.checkpoint_path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(o.restart_path, ec)) {
+    throw std::runtime_error("--restart: '" + o.restart_path +
+                             "' is a directory, not a checkpoint");
+  }
   const std::string &csv_path = o.csv_path, &vtk_dir = o.vtk_dir,
                     &checkpoint_path = o.checkpoint_path, &restart_path = o.restart_path,
                     &sections_path = o.sections_path;

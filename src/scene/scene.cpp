@@ -1,6 +1,7 @@
 // Scene files: parsing, overrides and validation (see scene.h for the keys and their meaning).
 #include "ehd_capsule/scene/scene.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -815,7 +816,7 @@ void RejectDuplicateKeys(const YAML::Node& node, const std::string& prefix,
     throw SceneError("scene " + origin + ": YAML nested deeper than " +
                      std::to_string(kMaxSceneDepth) + " levels at '" +
                      prefix.substr(0, prefix.size() - 1) +
-                     "' (with aliases expanded; an alias inside its own anchor?): refused");
+                     "' (aliases expanded; a scene has 3): refused");
   }
   if (node.IsSequence()) {
     for (const auto& item : node) RejectDuplicateKeys(item, prefix, origin, depth + 1, nodes);
@@ -849,6 +850,9 @@ Scene ParseScene(const std::string& yaml_text, const std::vector<std::string>& o
   std::vector<YAML::Node> documents;
   try {
     documents = YAML::LoadAll(yaml_text);
+  } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's own limit says only "bad file"
+    throw SceneError("scene " + origin + ": YAML nested deeper than " + std::to_string(e.depth()) +
+                     " levels at line " + std::to_string(e.mark.line + 1) + ": refused");
   } catch (const YAML::Exception& e) {
     throw SceneError("scene " + origin + ": not valid YAML: " + e.what());
   }

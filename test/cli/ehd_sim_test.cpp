@@ -241,6 +241,10 @@ TEST(EhdSim, BadInputIsRefusedNamingTheKeyOrOption) {
        {"'Ca'", "!!str", "(0, 10]"}},
       {scene_file("list_key", shipped + "[a, b]: 1\n") + " --steps 1", 1, {"a list, not a name"}},
       {::testing::TempDir() + " --steps 1", 1, {"is a directory"}},
+      {scene_file("deep", shipped + "x: " + std::string(600, '[') + std::string(600, ']')) +
+           " --steps 1",
+       1,
+       {"nested deeper than 500 levels at line"}},
       // Options.
       {tiny + "--until inf", 2, {"--until must be a time in (0, 1e+06]", "'inf'"}},
       {tiny + "--until 1e300", 2, {"--until must be a time in (0, 1e+06]", "'1e300'"}},
@@ -257,6 +261,13 @@ TEST(EhdSim, BadInputIsRefusedNamingTheKeyOrOption) {
       {tiny + "--steps 1 --summary-json " + ::testing::TempDir() + "no_such_dir/s.json",
        1,
        {"--summary-json: cannot write", "no_such_dir"}},
+      {tiny + "--steps 1 --summary-json " + ::testing::TempDir(),
+       1,
+       {"--summary-json: '", "is a directory"}},
+      {tiny + "--steps 1 --checkpoint " + ::testing::TempDir(),
+       1,
+       {"--checkpoint: '", "is a directory"}},
+      {tiny + "--steps 1 --restart " + ::testing::TempDir(), 1, {"--restart: '", "is a directory"}},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.args);

@@ -154,6 +154,9 @@ TEST(Scene, BadInputIsRefusedNamingTheKeyOrLimit) {
   } cases[] = {
       {"alias bomb", base + AliasBomb(), {"more than 100000 YAML nodes", "aliases"}},
       {"alias inside its anchor", base + "x: &x [*x]\n", {"deeper than 64 levels", "'x'"}},
+      {"deep nesting",
+       base + "x: " + std::string(600, '[') + std::string(600, ']'),
+       {"nested deeper than 500 levels at line 13"}},
       {"second document",
        base + "---\nCa: 5\n",
        {"second YAML document at line 14", "one document per scene file"}},
