@@ -1,5 +1,8 @@
 // ehd_sim: the headless front end of the ehd_capsule simulator (no ROS needed).
+#include <cmath>
+#include <cstdio>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,15 +31,53 @@ std::vector<int> ParseIntList(const std::string& option, const std::string& text
   return out;
 }
 
-double ParseDouble(const std::string& option, const std::string& text) {
+namespace {
+
+// The number in text (nan and inf included), or nullopt.
+std::optional<double> NumberIn(const std::string& text) {
   try {
     std::size_t used = 0;
     const double v = std::stod(text, &used);
-    if (used != text.size()) throw std::invalid_argument(text);
-    return v;
+    if (used == text.size()) return v;
   } catch (const std::exception&) {
-    throw UsageError(option + ": expected a number, got '" + text + "'");
   }
+  return std::nullopt;
+}
+
+std::string Format(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
+
+double ParseDouble(const std::string& option, const std::string& text) {
+  const std::optional<double> v = NumberIn(text);
+  if (!v || !std::isfinite(*v)) {
+    throw UsageError(option + ": expected a finite number, got '" + text + "'");
+  }
+  return *v;
+}
+
+double ParseDoubleIn(const std::string& option, const std::string& text, double lo, double hi,
+                     bool lo_open, const std::string& what, const std::string& note) {
+  const std::optional<double> v = NumberIn(text);
+  // NaN fails both comparisons.
+  if (!v || !(lo_open ? *v > lo : *v >= lo) || !(*v <= hi)) {
+    throw UsageError(option + " must be " + what + " in " + (lo_open ? "(" : "[") + Format(lo) +
+                     ", " + Format(hi) + "]" + note + ", got '" + text + "'");
+  }
+  return *v;
+}
+
+long ParseLongIn(const std::string& option, const std::string& text, long lo, long hi) {
+  const long v = ParseLong(option, text);
+  if (v < lo || v > hi) {
+    throw UsageError(option + " must be an integer in [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "], got '" + text + "'");
+  }
+  return v;
 }
 
 long ParseLong(const std::string& option, const std::string& text) {
@@ -53,6 +94,12 @@ long ParseLong(const std::string& option, const std::string& text) {
 const std::string& OptionValue(const std::vector<std::string>& args, std::size_t& i) {
   if (i + 1 >= args.size()) throw UsageError(args[i] + " needs a value");
   return args[++i];
+}
+
+const std::string& PathValue(const std::vector<std::string>& args, std::size_t& i) {
+  const std::string& path = OptionValue(args, i);
+  if (path.empty()) throw UsageError(args[i - 1] + " needs a path, got an empty one");
+  return path;
 }
 
 namespace {

@@ -1,8 +1,11 @@
 // ehd_sim run: headless run of one scene with a CSV time series, VTK frames and checkpoints.
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -32,11 +35,12 @@ const char* kUsage =
     "Runs SCENE (a name in config/scenes or a path to a .yaml file). Prints the scene, the\n"
     "derived lattice values and the assembled pipeline, then a progress line.\n"
     "  --set key=value   override a scene key (nested: geometry.shape=ellipse); repeatable\n"
-    "  --steps N         stop after N steps\n"
-    "  --until T         stop at time T (units of 1/k with shear, else the scene's time unit)\n"
+    "  --steps N         stop after N steps (1 to 1e12)\n"
+    "  --until T         stop at time T in (0, 1e6] (units of 1/k with shear, else the scene's\n"
+    "                    time unit)\n"
     "  --until-steady TOL  stop when, over the last unit of time, D_xy changed by less than\n"
     "                    TOL relative (TOL max(D_xy, 1e-3)) and theta by less than TOL pi\n"
-    "                    (default end: numerics.t_end)\n"
+    "                    (TOL in (0, 1]; default end: numerics.t_end)\n"
     "  --csv FILE        time series: step,t,dxy,inclination,area,tt_phase,... (every step,\n"
     "                    or every --csv-every N steps)\n"
     "  --vtk DIR         ParaView frames (fluid .vti, membrane .vtp, .pvd) every --vtk-every N\n"
@@ -53,6 +57,11 @@ const char* kUsage =
     "Exit status 0 on success, 1 if the simulation stopped on an error (the message names the\n"
     "step and the quantity) or at the step cap numerics.max_steps before its end time, 2 on a\n"
     "usage error.\n";
+
+// The most steps one run may take (numerics.max_steps' maximum) and the latest --until (the
+// range of numerics.t_end): a horizon beyond them would not end.
+constexpr long kMaxRunSteps = 1000000000000L;
+constexpr double kMaxUntil = 1e6;
 
 struct RunOptions {
   std::string scene_name, csv_path, vtk_dir, checkpoint_path, restart_path, sections_path,
@@ -78,35 +87,36 @@ RunOptions ParseRunOptions(const std::vector<std::string>& args) {
     if (a == "--set")
       overrides.push_back(OptionValue(args, i));
     else if (a == "--steps")
-      steps = ParseLong(a, OptionValue(args, i));
+      steps = ParseLongIn(a, OptionValue(args, i), 1, kMaxRunSteps);
     else if (a == "--until")
-      until = ParseDouble(a, OptionValue(args, i));
+      until = ParseDoubleIn(a, OptionValue(args, i), 0.0, kMaxUntil, true, "a time",
+                            " (as numerics.t_end)");
     else if (a == "--until-steady")
-      steady_tol = ParseDouble(a, OptionValue(args, i));
+      steady_tol = ParseDoubleIn(a, OptionValue(args, i), 0.0, 1.0, true, "a relative tolerance");
     else if (a == "--csv")
-      csv_path = OptionValue(args, i);
+      csv_path = PathValue(args, i);
     else if (a == "--csv-every")
       csv_every = ParseLong(a, OptionValue(args, i));
     else if (a == "--progress")
-      progress_s = ParseDouble(a, OptionValue(args, i));
+      progress_s = ParseDoubleIn(a, OptionValue(args, i), 0.0, 1e9, false, "a number of seconds");
     else if (a == "--quiet")
       quiet = true;
     else if (a == "--vtk")
-      vtk_dir = OptionValue(args, i);
+      vtk_dir = PathValue(args, i);
     else if (a == "--vtk-every")
       vtk_every = ParseLong(a, OptionValue(args, i));
     else if (a == "--checkpoint")
-      checkpoint_path = OptionValue(args, i);
+      checkpoint_path = PathValue(args, i);
     else if (a == "--checkpoint-every")
       checkpoint_every = ParseLong(a, OptionValue(args, i));
     else if (a == "--restart")
-      restart_path = OptionValue(args, i);
+      restart_path = PathValue(args, i);
     else if (a == "--sections")
-      sections_path = OptionValue(args, i);
+      sections_path = PathValue(args, i);
     else if (a == "--sections-every")
       sections_every = ParseLong(a, OptionValue(args, i));
     else if (a == "--summary-json")
-      o.summary_path = OptionValue(args, i);
+      o.summary_path = PathValue(args, i);
     else if (!a.empty() && a[0] == '-')
       throw UsageError("unknown option '" + a + "'");
     else if (scene_name.empty())
@@ -115,10 +125,10 @@ RunOptions ParseRunOptions(const std::vector<std::string>& args) {
       throw UsageError("more than one scene given ('" + scene_name + "', '" + a + "')");
   }
   if (scene_name.empty()) throw UsageError("no scene given");
-  if ((steps >= 0) + (until >= 0) + (steady_tol >= 0) > 1) {
+  // Given values are > 0 (checked above); -1 is "not given".
+  if ((steps > 0) + (until > 0) + (steady_tol > 0) > 1) {
     throw UsageError("give at most one of --steps, --until, --until-steady");
   }
-  if (steps == 0 || steps < -1) throw UsageError("--steps must be >= 1");
   if (csv_every < 1) throw UsageError("--csv-every must be >= 1");
   if (sections_every < 1) throw UsageError("--sections-every must be >= 1");
   if (vtk_every < 0 || (!vtk_dir.empty() && vtk_every == 0)) {
@@ -131,7 +141,6 @@ RunOptions ParseRunOptions(const std::vector<std::string>& args) {
   if (checkpoint_every > 0 && checkpoint_path.empty()) {
     throw UsageError("--checkpoint-every needs --checkpoint FILE");
   }
-  if (steady_tol == 0.0) throw UsageError("--until-steady needs a tolerance > 0");
 
   return o;
 }
@@ -158,6 +167,25 @@ std::string JsonNumber(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.10g", v);
   return text;
+}
+
+// Output files written only during or after the run (--summary-json, --checkpoint) are checked
+// before it, as --csv is: `probe` (the file itself, or FILE.tmp) is opened for appending and
+// removed again if it was not there.
+void CheckWritable(const std::string& option, const std::string& path, const std::string& probe) {
+  if (path.empty()) return;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw std::runtime_error(option + ": '" + path + "' is a directory, not a file");
+  }
+  const bool existed = std::filesystem::exists(probe, ec);
+  {
+    std::ofstream out(probe, std::ios::app);
+    if (!out) {
+      throw std::runtime_error(option + ": cannot write '" + probe + "': " + std::strerror(errno));
+    }
+  }
+  if (!existed) std::filesystem::remove(probe, ec);
 }
 
 // How a run ended, for --summary-json.
@@ -308,6 +336,13 @@ RunEnd DecideRunEnd(const RunOptions& o, const Simulation& sim, double t_end, lo
 
 int RunScene(const std::vector<std::string>& args) {
   const RunOptions o = ParseRunOptions(args);
+  CheckWritable("--summary-json", o.summary_path, o.summary_path + ".tmp");
+  CheckWritable("--checkpoint", o.checkpoint_path, o.checkpoint_path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(o.restart_path, ec)) {
+    throw std::runtime_error("--restart: '" + o.restart_path +
+                             "' is a directory, not a checkpoint");
+  }
   const std::string &csv_path = o.csv_path, &vtk_dir = o.vtk_dir,
                     &checkpoint_path = o.checkpoint_path, &restart_path = o.restart_path,
                     &sections_path = o.sections_path;
@@ -341,12 +376,20 @@ int RunScene(const std::vector<std::string>& args) {
     std::cout << "restarted from " << restart_path << " at step " << sim.state().step
               << ", t = " << sim.state().time << '\n';
   }
-  const double t_end = until >= 0 ? until : scene.numerics.t_end;
+  const double t_end = until > 0 ? until : scene.numerics.t_end;
+  if (until > 0) {
+    const double needed = (until - sim.state().time) / sim.units().dt;
+    if (!(needed <= kMaxRunSteps)) {
+      throw UsageError("--until " + FormatValue(until) + " needs " + FormatValue(needed) +
+                       " steps of dt = " + FormatValue(sim.units().dt) + ", more than the " +
+                       std::to_string(kMaxRunSteps) + " steps a run may take");
+    }
+  }
   // An explicit --until T is not capped; the scene's t_end and --until-steady are capped by
   // numerics.max_steps, and reaching the cap before t_end is reported as a failure.
-  const long max_steps = steps > 0    ? sim.state().step + steps
-                         : until >= 0 ? std::numeric_limits<long>::max()
-                                      : scene.numerics.max_steps;
+  const long max_steps = steps > 0   ? sim.state().step + steps
+                         : until > 0 ? std::numeric_limits<long>::max()
+                                     : scene.numerics.max_steps;
   const char* unit = scene.has_shear() ? "1/k" : sim.units().time_unit.c_str();
   if (!quiet) {
     if (steps > 0)
@@ -354,8 +397,7 @@ int RunScene(const std::vector<std::string>& args) {
     else
       std::cout << "running to t = " << t_end << " (" << unit << ")"
                 << (steady_tol > 0 ? ", or until steady to " + std::to_string(steady_tol) : "")
-                << (until >= 0 ? std::string()
-                               : ", at most " + std::to_string(max_steps) + " steps")
+                << (until > 0 ? std::string() : ", at most " + std::to_string(max_steps) + " steps")
                 << '\n';
   }
 

@@ -1,9 +1,11 @@
 // Scene files: parsing, overrides and validation (see scene.h for the keys and their meaning).
 #include "ehd_capsule/scene/scene.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -151,6 +153,7 @@ class SceneReader {
       case KeyType::kInteger: {
         double x = 0.0;
         const bool integer = key.type == KeyType::kInteger;
+        RejectNumberSpelling(key, v);
         if (!ScalarAsDouble(v, &x) || (integer && x != std::floor(x))) {
           Fail(Name(key), "expected " + key.TypeText() + meaning + ", got " + ScalarText(v));
         }
@@ -173,6 +176,31 @@ class SceneReader {
         break;
     }
     return {};
+  }
+
+  // Text where a number belongs (quoted, or tagged !!str or a custom tag), and a leading zero
+  // on an integer (YAML 1.1 reads 0100 as octal 64, yaml-cpp as 100): refused, not guessed.
+  void RejectNumberSpelling(const SceneKey& key, const YAML::Node& v) const {
+    if (!v.IsScalar()) return;
+    const std::string& tag = v.Tag();
+    const std::string yaml_tag = "tag:yaml.org,2002:";
+    if (tag != "?" && tag != yaml_tag + "int" && tag != yaml_tag + "float") {
+      const std::string shown = tag == "!" ? "quoted text"
+                                : tag.compare(0, yaml_tag.size(), yaml_tag) == 0
+                                    ? "text tagged !!" + tag.substr(yaml_tag.size())
+                                    : "text tagged " + tag;
+      Fail(Name(key), "expected " + key.TypeText() + " (" + key.doc + "), got " + shown + " " +
+                          ScalarText(v) + ": write the number without quotes or tag");
+    }
+    const std::string& text = v.Scalar();
+    const std::size_t digits = text.find_first_not_of("+-");
+    if (digits != std::string::npos && digits <= 1 && text.size() > digits + 1 &&
+        text[digits] == '0' && std::isdigit(static_cast<unsigned char>(text[digits + 1])) &&
+        text.find('.') == std::string::npos) {
+      Fail(Name(key), "= " + text +
+                          " has a leading zero (YAML 1.1 reads it as an octal number): write the "
+                          "number without it");
+    }
   }
 
   void CheckKeys(const YAML::Node& node, const std::string& block,
@@ -778,40 +806,80 @@ std::vector<std::string> ListScenes() {
   return names;
 }
 
+namespace {
+
+// Limits on a scene's YAML tree with aliases expanded: a shipped scene has about a hundred nodes
+// and 3 levels, while nested aliases (a: &a [x, x], b: &b [*a, *a], ...) grow it exponentially
+// and an alias inside its own anchor (a: &a [*a]) makes it endless.
+constexpr long kMaxSceneNodes = 100000;
+constexpr int kMaxSceneDepth = 64;
+
 // yaml-cpp keeps both pairs of a repeated key and lookups return the first, so a scene that
-// sets a key twice would silently ignore the second value: refuse it, naming both lines.
+// sets a key twice would silently ignore the second value: refuse it, naming both lines. Also
+// refuses a key that is not a name (a list or a block) and a tree beyond the limits above.
 void RejectDuplicateKeys(const YAML::Node& node, const std::string& prefix,
-                         const std::string& origin) {
+                         const std::string& origin, int depth, long& nodes) {
+  if (++nodes > kMaxSceneNodes) {
+    throw SceneError("scene " + origin + ": more than " + std::to_string(kMaxSceneNodes) +
+                     " YAML nodes with aliases (*name) expanded (a scene has about a hundred): "
+                     "refused");
+  }
+  if (depth > kMaxSceneDepth) {
+    throw SceneError("scene " + origin + ": YAML nested deeper than " +
+                     std::to_string(kMaxSceneDepth) + " levels at '" +
+                     prefix.substr(0, prefix.size() - 1) +
+                     "' (aliases expanded; a scene has 3): refused");
+  }
   if (node.IsSequence()) {
-    for (const auto& item : node) RejectDuplicateKeys(item, prefix, origin);
+    for (const auto& item : node) RejectDuplicateKeys(item, prefix, origin, depth + 1, nodes);
     return;
   }
   if (!node.IsMap()) return;
   std::map<std::string, int> first_line;
   for (auto it = node.begin(); it != node.end(); ++it) {
-    const std::string key = it->first.IsScalar() ? it->first.Scalar() : std::string("?");
     const int line = it->first.Mark().line + 1;
+    if (!it->first.IsScalar()) {
+      throw SceneError("scene " + origin + ": line " + std::to_string(line) + ": a key " +
+                       (prefix.empty() ? "at the top level"
+                                       : "in '" + prefix.substr(0, prefix.size() - 1) + "'") +
+                       " is " + ScalarText(it->first) + ", not a name");
+    }
+    const std::string key = it->first.Scalar();
     const auto [seen, inserted] = first_line.emplace(key, line);
     if (!inserted) {
       throw SceneError("scene " + origin + ": key '" + prefix + key + "' is given twice (lines " +
                        std::to_string(seen->second) + " and " + std::to_string(line) +
                        "); keep one");
     }
-    RejectDuplicateKeys(it->second, prefix + key + ".", origin);
+    RejectDuplicateKeys(it->second, prefix + key + ".", origin, depth + 1, nodes);
   }
 }
 
+}  // namespace
+
 Scene ParseScene(const std::string& yaml_text, const std::vector<std::string>& overrides,
                  const std::string& origin) {
-  YAML::Node root;
+  std::vector<YAML::Node> documents;
   try {
-    root = YAML::Load(yaml_text);
+    documents = YAML::LoadAll(yaml_text);
+  } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's own limit says only "bad file"
+    throw SceneError("scene " + origin + ": YAML nested deeper than " + std::to_string(e.depth()) +
+                     " levels at line " + std::to_string(e.mark.line + 1) + ": refused");
   } catch (const YAML::Exception& e) {
     throw SceneError("scene " + origin + ": not valid YAML: " + e.what());
   }
+  // A second document (after '---') would be ignored; an empty one (a trailing '---') is not.
+  for (std::size_t i = 1; i < documents.size(); ++i) {
+    if (documents[i].IsNull()) continue;
+    throw SceneError("scene " + origin + ": a second YAML document at line " +
+                     std::to_string(documents[i].Mark().line + 1) +
+                     " (after '---'): one document per scene file");
+  }
+  YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
   if (!root.IsMap()) throw SceneError("scene " + origin + ": expected a block of key: value lines");
-  RejectDuplicateKeys(root, "", origin);
+  long nodes = 0;
+  RejectDuplicateKeys(root, "", origin, 0, nodes);
   for (const auto& o : overrides) ApplyOverride(root, o);
   Scene scene = Validate(root, origin);
   if (scene.name.empty()) scene.name = "inline";
@@ -833,22 +901,33 @@ Scene LoadScene(const std::string& name_or_path, const std::vector<std::string>&
       name_or_path.find('/') != std::string::npos ||
       (name_or_path.size() > 5 && name_or_path.compare(name_or_path.size() - 5, 5, ".yaml") == 0);
   const std::string path = is_path ? name_or_path : SceneDirectory() + "/" + name_or_path + ".yaml";
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw SceneError("scene '" + name_or_path + "': " + path +
+                     " is a directory, not a scene file (.yaml)");
+  }
   std::ifstream in(path);
   if (!in) {
     std::string known;
     for (const auto& n : ListScenes()) known += (known.empty() ? "" : ", ") + n;
     std::string where;
     if (is_path && !path.empty() && path.front() != '/') {
-      std::error_code ec;
       where = " (a relative path, resolved from " + std::filesystem::current_path(ec).string() +
               "; roslaunch runs nodes in ROS_HOME: give an absolute path)";
     }
     throw SceneError("scene '" + name_or_path + "': cannot read " + path + where +
                      (is_path ? "" : " (shipped scenes: " + known + ")"));
   }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  Scene scene = ParseScene(buffer.str(), overrides, path);
+  // Read at most kMaxSceneBytes (+1 to tell): /dev/zero or a huge file is refused, not read.
+  constexpr std::size_t kMaxSceneBytes = 1 << 20;
+  std::string text(kMaxSceneBytes + 1, '\0');
+  in.read(&text[0], static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > kMaxSceneBytes) {
+    throw SceneError("scene '" + name_or_path + "': " + path + " is larger than " +
+                     std::to_string(kMaxSceneBytes) + " bytes (a scene file has a few hundred)");
+  }
+  Scene scene = ParseScene(text, overrides, path);
   if (scene.name == "inline") scene.name = std::filesystem::path(path).stem().string();
   return scene;
 }

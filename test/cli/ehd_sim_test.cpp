@@ -19,8 +19,10 @@ struct Result {
   std::string output;  // stdout and stderr together
 };
 
-Result RunSim(const std::string& args) {
-  const std::string cmd = std::string(EHD_SIM_BINARY) + " " + args + " 2>&1";
+// Runs ehd_sim with args; with timeout_s > 0 a run that does not end is killed (status 124).
+Result RunSim(const std::string& args, int timeout_s = 0) {
+  const std::string cmd = (timeout_s > 0 ? "timeout " + std::to_string(timeout_s) + " " : "") +
+                          std::string(EHD_SIM_BINARY) + " " + args + " 2>&1";
   Result r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (pipe == nullptr) return r;
@@ -194,6 +196,94 @@ TEST(EhdSim, BadSceneValuesNameTheKey) {
   r = RunSim("run no_such_scene --steps 1");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("no_such_scene"), std::string::npos) << r.output;
+}
+
+// Bad input (issue 44, items 8 to 10): every mutation ends in well under a second with a
+// non-zero status and a message naming the key or option and the limit; none hangs (each run
+// is bounded by `timeout`, status 124) and none runs on with a value silently dropped.
+TEST(EhdSim, BadInputIsRefusedNamingTheKeyOrOption) {
+  const std::string shipped = ReadFile(EHD_SOURCE_DIR "/config/scenes/capsule_shear.yaml");
+  ASSERT_NE(shipped.find("\nN: 128\n"), std::string::npos);
+  std::vector<std::string> written;
+  auto scene_file = [&](const std::string& name, const std::string& text) {
+    written.push_back(TempPath(name + ".yaml"));
+    std::ofstream(written.back()) << text;
+    return written.back();
+  };
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string text = shipped;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  std::string bomb = "a: &a [x, x, x, x, x, x, x, x, x]\n";
+  for (char c = 'b'; c <= 'i'; ++c) {
+    bomb += std::string(1, c) + ": &" + c + " [*" + char(c - 1);
+    for (int k = 1; k < 9; ++k) bomb += std::string(", *") + char(c - 1);
+    bomb += "]\n";
+  }
+  const std::string tiny = "capsule_shear --set N=32 --set M=32 ";
+  const struct {
+    std::string args;
+    int status;
+    std::vector<std::string> must_contain;
+  } cases[] = {
+      // Scene files (read by the node as well).
+      {scene_file("bomb", shipped + bomb) + " --steps 1", 1, {"more than 100000 YAML nodes"}},
+      {scene_file("cycle", shipped + "x: &x [*x]\n") + " --steps 1", 1, {"deeper than 64"}},
+      {scene_file("two_docs", shipped + "---\nCa: 5\n") + " --steps 1",
+       1,
+       {"second YAML document", "one document per scene file"}},
+      {scene_file("octal", replaced("\nN: 128\n", "\nN: 0100\n")) + " --steps 1",
+       1,
+       {"'N' = 0100", "leading zero"}},
+      {scene_file("str_tag", replaced("\nCa: 0.0125\n", "\nCa: !!str 0.04\n")) + " --steps 1",
+       1,
+       {"'Ca'", "!!str", "(0, 10]"}},
+      {scene_file("list_key", shipped + "[a, b]: 1\n") + " --steps 1", 1, {"a list, not a name"}},
+      {::testing::TempDir() + " --steps 1", 1, {"is a directory"}},
+      {scene_file("deep", shipped + "x: " + std::string(600, '[') + std::string(600, ']')) +
+           " --steps 1",
+       1,
+       {"nested deeper than 500 levels at line"}},
+      // Options.
+      {tiny + "--until inf", 2, {"--until must be a time in (0, 1e+06]", "'inf'"}},
+      {tiny + "--until 1e300", 2, {"--until must be a time in (0, 1e+06]", "'1e300'"}},
+      {tiny + "--until -1", 2, {"--until must be a time in (0, 1e+06]", "'-1'"}},
+      {tiny + "--until nan", 2, {"--until must be a time in (0, 1e+06]", "'nan'"}},
+      {tiny + "--until 1e6 --set numerics.membrane_substeps=1000",
+       2,
+       {"--until 1e+06 needs", "1000000000000 steps"}},
+      {tiny + "--until-steady -1", 2, {"--until-steady must be", "(0, 1]", "'-1'"}},
+      {tiny + "--until-steady nan", 2, {"--until-steady must be", "(0, 1]", "'nan'"}},
+      {tiny + "--steps -1", 2, {"--steps must be an integer in [1, 1000000000000]", "'-1'"}},
+      {tiny + "--steps 1 --csv ''", 2, {"--csv needs a path"}},
+      {tiny + "--steps 1 --progress nan", 2, {"--progress must be", "[0, 1e+09]", "'nan'"}},
+      {tiny + "--steps 1 --summary-json " + ::testing::TempDir() + "no_such_dir/s.json",
+       1,
+       {"--summary-json: cannot write", "no_such_dir"}},
+      {tiny + "--steps 1 --summary-json " + ::testing::TempDir(),
+       1,
+       {"--summary-json: '", "is a directory"}},
+      {tiny + "--steps 1 --checkpoint " + ::testing::TempDir(),
+       1,
+       {"--checkpoint: '", "is a directory"}},
+      {tiny + "--steps 1 --restart " + ::testing::TempDir(), 1, {"--restart: '", "is a directory"}},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.args);
+    const Result r = RunSim("run " + c.args, 20);
+    EXPECT_EQ(r.status, c.status) << r.output;
+    for (const auto& piece : c.must_contain) {
+      EXPECT_NE(r.output.find(piece), std::string::npos)
+          << "'" << piece << "' not in: " << r.output;
+    }
+    EXPECT_EQ(r.output.find("final: "), std::string::npos) << r.output;  // refused before the run
+  }
+  // Still accepted: an empty document after a trailing '---'.
+  const Result r =
+      RunSim("run " + scene_file("trailing", shipped + "---\n") + " --steps 1 --quiet", 20);
+  EXPECT_EQ(r.status, 0) << r.output;
+  for (const auto& path : written) std::remove(path.c_str());
 }
 
 TEST(EhdSim, CsvHasTheDocumentedColumnsAndOneRowPerStep) {

@@ -128,6 +128,76 @@ TEST(Scene, EmptyOverrideRemovesTheKey) {
   EXPECT_THROW(LoadScene("shear_field", {"N="}), SceneError);  // N is required
 }
 
+// Bad input the reader once hung on or read silently wrong (issue 44, items 8 and 9): each is
+// refused with the key or the limit named, in milliseconds.
+std::string AliasBomb() {
+  std::string text = "a: &a [x, x, x, x, x, x, x, x, x]\n";
+  for (char c = 'b'; c <= 'i'; ++c) {
+    text += std::string(1, c) + ": &" + c + " [";
+    for (int k = 0; k < 9; ++k) text += std::string(k ? ", *" : "*") + char(c - 1);
+    text += "]\n";
+  }
+  return text;
+}
+
+TEST(Scene, BadInputIsRefusedNamingTheKeyOrLimit) {
+  const std::string base = kMinimalCapsule;
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string text = base;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  const struct {
+    const char* what;
+    std::string text;
+    std::vector<std::string> must_contain;
+  } cases[] = {
+      {"alias bomb", base + AliasBomb(), {"more than 100000 YAML nodes", "aliases"}},
+      {"alias inside its anchor", base + "x: &x [*x]\n", {"deeper than 64 levels", "'x'"}},
+      {"deep nesting",
+       base + "x: " + std::string(600, '[') + std::string(600, ']'),
+       {"nested deeper than 500 levels at line 13"}},
+      {"second document",
+       base + "---\nCa: 5\n",
+       {"second YAML document at line 14", "one document per scene file"}},
+      {"leading zero", replaced("N: 32", "N: 0100"), {"'N'", "0100", "leading zero"}},
+      {"negative leading zero", replaced("V: 1", "V: -01"), {"'V'", "leading zero"}},
+      {"!!str on a number", replaced("Ca: 0.05", "Ca: !!str 0.04"), {"'Ca'", "!!str", "(0, 10]"}},
+      {"quoted number", replaced("Ca: 0.05", "Ca: \"0.04\""), {"'Ca'", "quoted", "(0, 10]"}},
+      {"list as a key", base + "? [a, b]\n: 1\n", {"line 13", "a list, not a name"}},
+      {"block as a key in a block",
+       base + "numerics: {{a: 1}: 2}\n",
+       {"in 'numerics'", "a block (map), not a name"}},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.what);
+    ExpectSceneError(c.text, {}, c.must_contain);
+  }
+  // What stays accepted: an empty document after a trailing '---', explicit numeric tags, a
+  // decimal 0.5.
+  EXPECT_NO_THROW(ParseScene(base + "---\n"));
+  EXPECT_NO_THROW(ParseScene(replaced("Ca: 0.05", "Ca: !!float 0.05")));
+  EXPECT_NO_THROW(ParseScene(replaced("Ca: 0.05", "Ca: 0.5")));
+  EXPECT_NO_THROW(ParseScene(replaced("N: 32", "N: !!int 32")));
+}
+
+// A directory or an endless file as the scene path is named as such.
+TEST(Scene, DirectoryOrHugeFileIsRefused) {
+  try {
+    LoadScene(SceneDirectory() + "/");
+    FAIL() << "expected SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos) << e.what();
+  }
+  try {
+    LoadScene("/dev/zero");
+    FAIL() << "expected SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("larger than 1048576 bytes"), std::string::npos)
+        << e.what();
+  }
+}
+
 // Every shipped scene loads and gives usable lattice values.
 TEST(Scene, ShippedScenesLoad) {
   const auto names = ListScenes();
