@@ -49,10 +49,10 @@ std::string MarkerStage<D>::Describe() const {
       << (advectors_.front().scheme() == MarkerIntegrator::kAdamsBashforth2 ? "Adams-Bashforth 2"
                                                                             : "forward Euler");
   if (scene_.numerics.ib_retraction > 0.0) {
-    out << (scene_.numerics.ib_extrapolate_velocity != 0
-                ? ", u interpolated at the retracted points and extrapolated to the points by the "
-                  "body's velocity gradient"
-                : ", u interpolated at the retracted points");
+    out << ", u interpolated at the points retracted " << scene_.numerics.ib_retraction << " h"
+        << (scene_.numerics.ib_extrapolate_velocity != 0
+                ? " and extrapolated to the points by the body's velocity gradient"
+                : "");
   }
   if (D == 2 && scene_.numerics.redistribute_markers > 0.0) {
     out << ", re-spaced evenly when max/min spacing > " << scene_.numerics.redistribute_markers;
@@ -91,7 +91,7 @@ template <int D>
 void MarkerStage<D>::Move(long step, int index, Body<D>& body) {
   const double retraction = scene_.numerics.ib_retraction * grid_.h;
   if (retraction > 0.0) {
-    // The same points the spread stage used (coupling/retracted_points.h).
+    // The points the spread stage used (coupling/retracted_points.h), from the same positions.
     RetractAlongNormals(body.shape, retraction, body.coupling);
     ib_.Interpolate(VelocityOf<D>(fluid_), body.coupling, body.U);
     if (scene_.numerics.ib_extrapolate_velocity != 0) {
