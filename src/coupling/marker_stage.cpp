@@ -52,7 +52,8 @@ std::string MarkerStage<D>::Describe() const {
     out << ", u interpolated at the points retracted " << scene_.numerics.ib_retraction << " h"
         << (scene_.numerics.ib_extrapolate_velocity != 0
                 ? " and extrapolated to the points by the body's velocity gradient"
-                : "");
+                : "")
+        << ", its net flux through the membrane removed";
   }
   if (D == 2 && scene_.numerics.redistribute_markers > 0.0) {
     out << ", re-spaced evenly when max/min spacing > " << scene_.numerics.redistribute_markers;
@@ -101,6 +102,7 @@ void MarkerStage<D>::Move(long step, int index, Body<D>& body) {
         FailStep(step, e.what());
       }
     }
+    RemoveEnclosedMeasureRate(body.shape, body.U);
   } else {
     ib_.Interpolate(VelocityOf<D>(fluid_), body.positions(), body.U);
   }

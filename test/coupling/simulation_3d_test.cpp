@@ -84,9 +84,12 @@ TEST(Simulation3D, VertexTensionAndVelocityFollowTheShape) {
 // The volume correction holds the enclosed volume at its initial value, and what it restores is
 // the leak the same run has without it (to first order the correction does not change the
 // flow), which the watchdog still sees. A coarse mesh (162 vertices, edges up to 1.5 h) leaks
-// fast enough to measure in a short run.
+// fast enough to measure in a short run. The immersed boundary at the points (song2019): the
+// retracted one removes the leak from the vertices' velocity each step (its drift here is 2.6e-6
+// instead of 2.4e-4), so there is nothing to restore.
 TEST(Simulation3D, VolumeCorrectionRestoresTheLeakItReports) {
-  const std::vector<std::string> coarse = {"mesh_subdivisions=2", "numerics.threads=1"};
+  const std::vector<std::string> coarse = {"mesh_subdivisions=2", "numerics.threads=1",
+                                           "numerics.ib_retraction=0"};
   std::vector<std::string> corrected = coarse;
   corrected.push_back("numerics.volume_correction_every=50");
   Simulation plain(TinySphere().Build(coarse)), fixed(TinySphere().Build(corrected));
@@ -112,14 +115,15 @@ TEST(Simulation3D, SmallDeformationIsNearTheLinearTheory) {
 }
 
 // A drop (surface tension gamma, Ca = mu k a / gamma, viscosity ratio 1) obeys Taylor's small-
-// deformation result D = (35/32) Ca; the same coarse-grid excess as for the capsule (the drop
-// is measured at 0.077 for 0.055 here; 0.064 at a = 8 cells, docs/validation_3d.md).
+// deformation result D = (35/32) Ca. With the immersed boundary at the points the coarse grid's
+// effective radius made it 41 % larger here (0.077 for 0.055; 0.064 at a = 8 cells,
+// docs/validation_3d.md); retracted (the default) it is measured at 0.0521, -4.7 % at a = 4.
 TEST(Simulation3D, DropIsNearTaylorsSmallDeformationResult) {
   Simulation sim(TinySphere().Name("tiny_drop3d").Drop().Build());
   while (sim.state().time < 1.0) sim.Step();
   const double taylor = 35.0 / 32.0 * 0.05;
-  EXPECT_GT(sim.state().dxy, 1.0 * taylor);
-  EXPECT_LT(sim.state().dxy, 1.6 * taylor);
+  EXPECT_GT(sim.state().dxy, 0.9 * taylor);
+  EXPECT_LT(sim.state().dxy, 1.1 * taylor);
   EXPECT_GT(sim.state().inclination / M_PI, 0.2);  // Taylor: pi/4 at small Ca
   EXPECT_LT(sim.state().inclination / M_PI, 0.26);
 }

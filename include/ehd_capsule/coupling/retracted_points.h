@@ -14,8 +14,10 @@
 // extrapolated to X with the body's best-fit velocity gradient A (least squares over the points
 // of U(X_r) = c + A (X_r - mean X_r)):
 //   U(X) = U(X_r) + A (X - X_r) = U(X_r) + delta A n,
-// exact for the linear interior flow of a tank-treading sphere, cylinder or ellipsoid; without
-// it the membrane tank-treads slower by (a - delta) / a.
+// exact for the linear interior flow of a tank-treading sphere, cylinder or ellipsoid (A is made
+// traceless: the inside is incompressible); without it the membrane tank-treads slower by
+// (a - delta) / a. That velocity is not the value of one divergence-free field at the points, so
+// its net flux through the membrane is removed (RemoveEnclosedMeasureRate).
 #pragma once
 
 #include "ehd_capsule/coupling/body.h"
@@ -32,5 +34,14 @@ void RetractAlongNormals(const BodyShape<D>& shape, double distance, PointsOf<D>
 // dimensions.
 template <int D>
 void ExtrapolateToPoints(const PointsOf<D>& retracted, const PointsOf<D>& points, PointsOf<D>& U);
+
+// U -= c g with g the gradient of the enclosed area (2D polygon) or volume (3D) with respect to
+// the points and c such that sum_k g_k . U_k = 0: the smallest change (least squares) that makes
+// the points' motion keep the enclosed measure to first order. The membrane is impermeable and
+// the inside incompressible, but U(X_r) + delta A n is not the velocity of one divergence-free
+// field at the points, and without this the enclosed area leaks (2D drop in shear: -0.25 % per
+// unit of time at a = 16, delta = 0.5 h; docs/validation_3d.md).
+template <int D>
+void RemoveEnclosedMeasureRate(const BodyShape<D>& shape, PointsOf<D>& U);
 
 }  // namespace ehd

@@ -100,8 +100,9 @@ struct SceneNumerics {
   // RestoreEnclosedVolume): the immersed boundary leaks slowly; 0 = off.
   int volume_correction_every = 0;
   // The immersed boundary's points retracted inward along the normals by this many cells
-  // (coupling/retracted_points.h); 0 = the points themselves (song2019).
-  double ib_retraction = 0;
+  // (coupling/retracted_points.h; 0.5 calibrated in docs/validation_3d.md); 0 = the points
+  // themselves (song2019).
+  double ib_retraction = 0.5;
   // With a retraction: 1 = the membrane moves with the velocity extrapolated from the retracted
   // points to its own (the kinematic condition), 0 = with the velocity at the retracted points.
   int ib_extrapolate_velocity = 1;
