@@ -38,7 +38,9 @@ NodePublishers::NodePublishers(ros::NodeHandle& nh, ros::NodeHandle& pnh,
   markers_every_ = params.markers_every > 0 ? params.markers_every : sim.dimension() == 3 ? 10 : 1;
 
   state_pub_ = pnh.advertise<ehd_capsule::CapsuleState>("state", 1000);
-  throttled_pub_ = pnh.advertise<ehd_capsule::CapsuleState>("state_throttled", 10);
+  // Latched: while paused nothing new is published, and a late subscriber (`rostopic echo -n1`
+  // after ~advance_by) waited for ever.
+  throttled_pub_ = pnh.advertise<ehd_capsule::CapsuleState>("state_throttled", 10, /*latch=*/true);
   field_pub_ = pnh.advertise<visualization_msgs::MarkerArray>("field", 2);
   tf_static_pub_ = nh.advertise<tf2_msgs::TFMessage>("/tf_static", 1, /*latch=*/true);
   shape_pub_ = pnh.advertise<geometry_msgs::PolygonStamped>("shape", 10);

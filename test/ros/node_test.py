@@ -204,6 +204,10 @@ class NodeTest(unittest.TestCase):
         self.assertIsNotNone(m, "advance_by did not reach step %d" % (b + 12))
         time.sleep(0.5)
         self.assertEqual(self.rec.snapshot()[-1].step, b + 12, "advance_by overshot")
+        # Issue #44 item 5: `rostopic echo -n1 ~state_throttled` while paused waited for ever. A
+        # new subscriber gets the latched state the run stands at.
+        late = rospy.wait_for_message(NODE + "/state_throttled", CapsuleState, timeout=10)
+        self.assertEqual(late.step, b + 12, "~state_throttled does not hold the paused state")
         self.assertTrue(self.call("resume").success)
         m = self.rec.wait_for(lambda m: m.step > b + 17, timeout=30)
         self.assertIsNotNone(m, "did not resume")

@@ -45,7 +45,9 @@ class NodePublishers {
   void PublishState();
   // After a reset the marker array comes with the next state again.
   void RestartMarkers() { states_since_markers_ = 0; }
-  // The latest state on ~state_throttled, at most ~throttled_rate times per wall second.
+  // The latest state on ~state_throttled, at most ~throttled_rate times per wall second;
+  // latched, so a subscriber that comes while the run is paused (`rostopic echo -n1` after
+  // ~advance_by) gets the state it stands at.
   void PublishThrottled();
   // The coloured layer on ~field, at most ~field_rate times per wall second and at least every
   // ~field_interval of simulation time; force: now (a failure, the end).
