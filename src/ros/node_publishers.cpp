@@ -76,23 +76,25 @@ void NodePublishers::PublishStaticTransform() { tf_static_pub_.publish(StaticTra
 
 void NodePublishers::RecordBagHeader() {
   if (!recorder_) return;
-  // The frame's static transform, as a latched connection so `rosbag play` latches it again and
-  // rviz has the frame on replay.
+  // The frame's static transform and the scene, as latched connections (as they are
+  // published), so `rosbag play` latches them again: rviz has the frame, and a tool that
+  // subscribes late the scene.
   recorder_->WriteLatched("/tf_static", StaticTransform(params_), StampNow());
   std_msgs::String scene_msg;
   scene_msg.data = sim_.scene().yaml_text;
-  Record("scene", scene_msg, StampNow());
+  recorder_->WriteLatched("scene", scene_msg, StampNow());
 }
 
 void NodePublishers::PublishSurfaceMesh() {
   if (sim_.dimension() != 3) return;
   const ehd_capsule::SurfaceMesh mesh = MakeSurfaceMesh(sim_, settings_, StampNow());
   surface_mesh_pub_.publish(mesh);
-  Record("surface_mesh", mesh, StampNow());
+  if (recorder_) recorder_->WriteLatched("surface_mesh", mesh, StampNow());
 }
 
 void NodePublishers::PublishState() {
   const ros::Time stamp = StampNow();
+  if (recorder_) recorder_->BeginState();
   // The clock goes with the states (at publish_every 100 it used to be 40% of a bag, published
   // every step), and only from the node that owns it (~publish_clock).
   if (params_.use_sim_time && params_.publish_clock) {

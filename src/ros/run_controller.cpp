@@ -17,12 +17,18 @@ std::string FormatProgressLine(const SimulationState& s, const ShownMeasures& m,
 }
 
 std::string FormatSummary(const std::string& how, const SimulationState& s, const ShownMeasures& m,
-                          const std::string& time_unit, double wall_seconds) {
-  char head[160], tail[64];
+                          const std::string& time_unit, double wall_seconds,
+                          const SteppingTime& stepping) {
+  char head[160], tail[160];
   std::snprintf(head, sizeof head, "summary: %s after %ld steps, t = %.4g %s: ", how.c_str(),
                 s.step, s.time, time_unit.c_str());
-  std::snprintf(tail, sizeof tail, "; %.1f s wall (%.0f steps/s)", wall_seconds,
-                wall_seconds > 0 ? s.step / wall_seconds : 0.0);
+  // The rate of the steps since the last reset over the time spent stepping them: wall time
+  // since the start, and paused time, used to be counted too ("610.0 s wall (14 steps/s)").
+  std::snprintf(tail, sizeof tail,
+                "; %.1f s wall, %ld steps in %.1f s of stepping%s (%.0f steps/s)", wall_seconds,
+                stepping.steps, stepping.seconds,
+                stepping.after_reset ? " since the last reset" : "",
+                stepping.seconds > 0 ? stepping.steps / stepping.seconds : 0.0);
   return head + FormatMeasures(s, m, ", ") + tail;
 }
 
@@ -153,9 +159,27 @@ bool RunController::OnResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Res
 }
 
 bool RunController::OnReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  pending_reset_ = true;
+  // Applied here, between two steps (callbacks run on the loop's thread), so that the answer
+  // says whether it was done. While recording, the new timeline's bag is opened first: if it
+  // cannot be, the reset is refused and the recording goes on where it was (it used to go on
+  // unrecorded, with only a log line).
+  if (recorder_) {
+    const std::string next = recorder_->NextPath();
+    try {
+      recorder_->OpenNext();
+    } catch (const std::exception& e) {
+      res.success = false;
+      res.message = "reset refused: cannot record the new timeline in " + next + ": " + e.what();
+      res.message += recorder_->is_open() ? "; still recording to " + recorder_->active_path()
+                                          : "; not recording (" + recorder_->failure() + ")";
+      ROS_ERROR("ehd_capsule: %s", res.message.c_str());
+      return true;
+    }
+  }
+  ResetRun();
   res.success = true;
-  res.message = "reset queued; applied before the next step";
+  res.message = "reset to the initial state of scene '" + params_.scene + "'";
+  if (recorder_) res.message += "; recording to " + recorder_->path();
   return true;
 }
 
@@ -197,25 +221,31 @@ void RunController::ResetRun() {
   config_.Ca_E = sim_.state().ca_e;
   config_.Ca = sim_.state().ca;
   config_dirty_ = true;
+  steps_since_reset_ = 0;
+  after_reset_ = true;
+  stepping_clock_.Restart(ros::WallTime::now().toSec());
   ROS_INFO("ehd_capsule: reset to the initial state of scene '%s'", params_.scene.c_str());
-  if (recorder_) {
-    // A new timeline starts at t = 0: a new bag, numbered (<stem>.1.bag, .2.bag, ...), so no
-    // bag holds two timelines; recording resumes after a failure too.
-    try {
-      recorder_->OpenNext();
-      pub_.RecordBagHeader();
-    } catch (const std::exception& e) {
-      ROS_ERROR("ehd_capsule: cannot record after the reset: %s", e.what());
-    }
-  }
+  // A new timeline starts at t = 0 in a new bag (OnReset opened it: <stem>.<n>.bag), so no bag
+  // holds two timelines; it starts as the first one does.
+  if (recorder_ && recorder_->is_open()) pub_.RecordBagHeader();
   pub_.PublishSurfaceMesh();
+  PublishStartState();
+}
+
+void RunController::PublishStartState() {
+  // The bag's first diagnostic (a bag whose recording fails in its first second used to hold
+  // none), then the state the timeline starts from, step 0, like every published step: a
+  // replay or a plot starts at t = 0. These and the bag's header are in chunks of their own,
+  // so `rosbag reindex` recovers them from a bag whose writing failed.
+  PublishDiagnostics(true);
+  pub_.PublishState();
+  if (recorder_) {
+    ReportRecordingRate();
+    recorder_->StartWritten();
+  }
 }
 
 void RunController::ApplyPendingRequests() {
-  if (pending_reset_) {
-    pending_reset_ = false;
-    ResetRun();
-  }
   if (config_dirty_) {
     config_dirty_ = false;
     config_.publish_every = publish_every_;
@@ -278,6 +308,7 @@ void RunController::StepOnce() {
     return;
   }
   pub_.CountStep();
+  ++steps_since_reset_;
   const SimulationState& s = sim_.state();
   if (s.step % publish_every_ == 0) {
     pub_.PublishState();
@@ -299,12 +330,18 @@ void RunController::StepOnce() {
 }
 
 void RunController::ReportRecordingRate() {
-  const std::optional<RecordingRate> rate = recorder_->SampleRate(ros::WallTime::now().toSec());
-  if (!rate) return;
   long states_left = -1;  // a live run or ~until_steady: the end is not known
   if (params_.steps > 0) {
     states_left = std::max(0L, (params_.steps - sim_.state().step) / publish_every_);
   }
+  // From the first state's size at once: a disk that fills within the first second (before a
+  // rate is measured) used to fill without a warning.
+  if (const std::optional<RecordingRate> first = recorder_->FirstState()) {
+    const std::string warning = FirstStateWarning(*first, states_left);
+    if (!warning.empty()) ROS_WARN("ehd_capsule: %s", warning.c_str());
+  }
+  const std::optional<RecordingRate> rate = recorder_->SampleRate(ros::WallTime::now().toSec());
+  if (!rate) return;
   const RecordingReport report = DescribeRecordingRate(*rate, states_left);
   ROS_INFO("ehd_capsule: %s", report.info.c_str());
   if (!report.warning.empty()) ROS_WARN("ehd_capsule: %s", report.warning.c_str());
@@ -326,9 +363,12 @@ void RunController::PrintProgress(bool force) {
 int RunController::Run() {
   pub_.StartClocks();
   last_progress_ = run_start_ = ros::WallTime::now();
+  stepping_clock_.Restart(run_start_.toSec());
   ros::WallTime next_step_time = ros::WallTime::now();
   HandleShutdownInTheLoop();  // SIGINT, SIGTERM, rosnode kill: end below, between two steps
+  PublishStartState();
   while (ros::ok() && !ShutdownRequested()) {
+    stepping_clock_.Mark(ros::WallTime::now().toSec());
     ros::spinOnce();
     ApplyPendingRequests();
     PublishDiagnostics(false);
@@ -343,6 +383,7 @@ int RunController::Run() {
       ros::WallDuration(0.01).sleep();
       continue;
     }
+    stepping_clock_.set_stepping(true);
     if (params_.max_step_rate > 0.0) {
       const ros::WallTime now = ros::WallTime::now();
       if (now < next_step_time) (next_step_time - now).sleep();
@@ -367,9 +408,12 @@ int RunController::Run() {
     ROS_INFO("ehd_capsule: %s at step %ld; stopping", end_reason_.c_str(), sim_.state().step);
   }
   PublishDiagnostics(true);
-  const double wall = (ros::WallTime::now() - run_start_).toSec();
+  const ros::WallTime end = ros::WallTime::now();
+  stepping_clock_.Mark(end.toSec());
+  const SteppingTime stepping{steps_since_reset_, stepping_clock_.seconds(), after_reset_};
   ROS_INFO("ehd_capsule: %s",
-           FormatSummary(how, sim_.state(), MeasuresOf(sim_.scene()), sim_.units().time_unit, wall)
+           FormatSummary(how, sim_.state(), MeasuresOf(sim_.scene()), sim_.units().time_unit,
+                         (end - run_start_).toSec(), stepping)
                .c_str());
   if (!pub_.field_is_current()) pub_.PublishField(true);  // the final state's layer
   if (recorder_) recorder_->Close();

@@ -11,7 +11,8 @@ What must hold, and why:
   would freeze the time, counted in units of 1/k);
 - ~state_throttled follows at a wall-clock rate of at most 20 Hz;
 - pause stops the steps, advance takes exactly `advance_steps` steps, advance_by exactly the
-  steps of its request, resume continues;
+  steps of its request, resume continues; ~state_throttled is latched, so a subscriber that
+  comes while paused gets the state the run stands at (issue #44 item 5);
 - an invalid scene makes the node exit non-zero with a message naming the problem.
 """
 import math
@@ -270,7 +271,8 @@ class NodeTest(unittest.TestCase):
         self.assertFalse(os.path.exists(path + ".active"), "bag left .active after closing")
         import rosbag
         with rosbag.Bag(path) as bag:
-            self.assertEqual(bag.get_message_count("/ehd_overwrite_test/state"), 5)
+            # Steps 0 (the state the run starts from) to 5.
+            self.assertEqual(bag.get_message_count("/ehd_overwrite_test/state"), 6)
         os.remove(path)
 
 

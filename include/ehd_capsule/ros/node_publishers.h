@@ -36,9 +36,11 @@ class NodePublishers {
   // frame_id, identity, so rviz has the frame).
   void PublishScene();
   void PublishStaticTransform();
-  // What every bag starts with: /tf_static as a latched connection, then ~scene.
+  // What every bag starts with: /tf_static, then ~scene, both as latched connections (so
+  // `rosbag play` latches them again for a late subscriber).
   void RecordBagHeader();
-  // 3D: the latched triangles, published and recorded (again after a reset); nothing in 2D.
+  // 3D: the latched triangles, published and recorded as a latched connection (again after a
+  // reset); nothing in 2D.
   void PublishSurfaceMesh();
   // One published state: /clock (with /use_sim_time and ~publish_clock), ~state, ~shape, 3D
   // ~surface_state, and ~markers with the first state and every markers_every-th after it.

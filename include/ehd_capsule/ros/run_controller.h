@@ -5,7 +5,7 @@
 // Follows turtlesim: callbacks run in ros::spinOnce on the loop's thread, between two steps, so
 // nothing needs a lock. A live Ca or Ca_E is handed to Simulation::SetCa / SetCaE at once (the
 // one pending-change queue: it takes effect at the next step, or is refused with the reason);
-// a reset is applied before the next step.
+// a reset is applied in its service call, which answers whether it was done.
 #pragma once
 
 #include <dynamic_reconfigure/server.h>
@@ -34,10 +34,41 @@ using ehd::ShownMeasures;
 // (3D: "... D_z = 0.01234  volume drift = ...")
 std::string FormatProgressLine(const SimulationState& s, const ShownMeasures& m,
                                const std::string& time_unit, double steps_per_second);
+// The steps the summary's rate is over: those since the start or the last reset, and the wall
+// time spent stepping them (paused time not counted; the steps of ~advance are).
+struct SteppingTime {
+  long steps = 0;
+  double seconds = 0.0;
+  bool after_reset = false;
+};
 // "summary: ran after 120 steps, t = 0.3 1/k: D_xy = ..., theta/pi = ..., area drift = ...;
-// 1.0 s wall (120 steps/s)"; how: "ran", "stopped on an error", ...
+// 610.0 s wall, 120 steps in 1.0 s of stepping (120 steps/s)" (" since the last reset" after
+// one); how: "ran", "stopped on an error", ...
 std::string FormatSummary(const std::string& how, const SimulationState& s, const ShownMeasures& m,
-                          const std::string& time_unit, double wall_seconds);
+                          const std::string& time_unit, double wall_seconds,
+                          const SteppingTime& stepping);
+
+// The wall time of the loop's stepping iterations: Mark(now) at the top of each iteration adds
+// the time since the previous mark if that iteration stepped; Restart at the start and a reset.
+class SteppingClock {
+ public:
+  void Restart(double now) {
+    seconds_ = 0.0;
+    last_ = now;
+    stepping_ = false;
+  }
+  void Mark(double now) {
+    if (stepping_) seconds_ += now - last_;
+    last_ = now;
+    stepping_ = false;
+  }
+  void set_stepping(bool stepping) { stepping_ = stepping; }  // the iteration since Mark
+  double seconds() const { return seconds_; }
+
+ private:
+  double seconds_ = 0.0, last_ = 0.0;
+  bool stepping_ = false;
+};
 // The memory and time estimate of a scene too large to watch live; empty when it is not.
 std::string LargeRunWarning(const Scene& scene, const LatticeUnits& units);
 
@@ -71,6 +102,7 @@ class RunController {
   bool StartAdvance(long steps, std::string& message);
   void ApplyPendingRequests();
   void ResetRun();
+  void PublishStartState();  // step 0: at the start and after a reset
   void StepOnce();
   void Fail(const std::string& reason);
   void OnRecordError(const std::string& reason);
@@ -91,7 +123,6 @@ class RunController {
   std::unique_ptr<SteadyStateMonitor> steady_monitor_;
 
   // Requests recorded by callbacks, applied by the loop.
-  bool pending_reset_ = false;
   long advance_remaining_ = 0;
   int advance_steps_ = 1;
   ehd_capsule::SimulationConfig config_;
@@ -102,6 +133,9 @@ class RunController {
   std::unique_ptr<dynamic_reconfigure::Server<ehd_capsule::SimulationConfig>> reconfigure_;
 
   ros::WallTime last_progress_, run_start_;
+  SteppingClock stepping_clock_;  // since the start or the last reset
+  long steps_since_reset_ = 0;
+  bool after_reset_ = false;
   long last_progress_step_ = 0;
 };
 
