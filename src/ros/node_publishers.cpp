@@ -167,6 +167,12 @@ void NodePublishers::PublishDiagnostics(bool force, const RunStatus& run) {
   status.hardware_id = params_.scene;
   status.level = run.error ? status.ERROR : status.OK;
   status.message = run.message;
+  if (!run.refused.empty() && !run.error) {
+    // A refused live value, visible to whoever changed it (dynamic_reconfigure's caller gets
+    // the kept value back; `dynparam set` says nothing).
+    status.level = status.WARN;
+    status.message += "; " + run.refused;
+  }
   const SimulationState& s = sim_.state();
   auto add = [&status](const std::string& key, const std::string& value) {
     diagnostic_msgs::KeyValue kv;
@@ -183,6 +189,7 @@ void NodePublishers::PublishDiagnostics(bool force, const RunStatus& run) {
   add("max_mach", std::to_string(s.max_mach));
   add("Ca_E", std::to_string(s.ca_e));
   add("Ca", std::to_string(s.ca));
+  if (!run.refused.empty()) add("refused", run.refused);
   if (recorder_ && !recorder_->failure().empty() && status.level != status.ERROR) {
     status.level = status.ERROR;
     status.message = recorder_->failure();

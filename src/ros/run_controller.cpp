@@ -32,6 +32,23 @@ std::string FormatSummary(const std::string& how, const SimulationState& s, cons
   return head + FormatMeasures(s, m, ", ") + tail;
 }
 
+LiveValueRanges AcceptedLiveValues(const Simulation& sim) {
+  const Scene& scene = sim.scene();
+  const LatticeUnits& u = sim.units();
+  LiveValueRanges r;
+  r.ca_e_max = sim.has_electric_field() ? scene.electric.max_ca_e : 0.0;
+  if (scene.has_shear()) {
+    // Simulation::SetCa's limits: max_Ca and the wall Mach number k L / c_s <= max_mach, with
+    // k = Ca T / (mu a); a hair below the latter so that its end is itself accepted.
+    const double mach_limit = scene.numerics.max_mach * kLatticeSoundSpeed / u.half_width *
+                              u.viscosity * u.radius / u.tension * (1.0 - 1e-12);
+    r.ca_max = std::min(scene.max_Ca, mach_limit);
+  } else {
+    r.ca_min = r.ca_max = sim.state().ca;
+  }
+  return r;
+}
+
 std::string LargeRunWarning(const Scene& scene, const LatticeUnits& units) {
   // Estimates from this machine kind's measured costs (docs/validation_ehd.md sec. 5,
   // docs/lbm.md): ~250 bytes of fluid state per cell (populations, moments, force, viscosity,
@@ -72,7 +89,10 @@ RunController::RunController(ros::NodeHandle& pnh, const NodeParameters& params,
   advance_srv_ = pnh.advertiseService("advance", &RunController::OnAdvance, this);
   advance_by_srv_ = pnh.advertiseService("advance_by", &RunController::OnAdvanceBy, this);
 
-  // The dynamic_reconfigure defaults are the scene's values, not the .cfg's.
+  // The dynamic_reconfigure values and defaults are the scene's, not the .cfg's, and so are the
+  // ranges shown (rqt_reconfigure's sliders). The .cfg's own ranges stay wide: the server clamps
+  // a request to them before the node sees it, and a value outside the scene's range must be
+  // refused with what was asked for, not applied as the range's end.
   config_.Ca_E = sim_.state().ca_e;
   config_.Ca = sim_.state().ca;
   config_.publish_every = publish_every_;
@@ -80,35 +100,55 @@ RunController::RunController(ros::NodeHandle& pnh, const NodeParameters& params,
   config_.advance_steps = advance_steps_;
   reconfigure_ = std::make_unique<dynamic_reconfigure::Server<ehd_capsule::SimulationConfig>>(
       reconfigure_mutex_, pnh);
+  ehd_capsule::SimulationConfig min, max, dflt;
+  reconfigure_->getConfigMin(min);
+  reconfigure_->getConfigMax(max);
+  const LiveValueRanges ranges = AcceptedLiveValues(sim_);
+  min.Ca_E = ranges.ca_e_min;
+  max.Ca_E = ranges.ca_e_max;
+  min.Ca = ranges.ca_min;
+  max.Ca = ranges.ca_max;
+  dflt = config_;
+  reconfigure_->setConfigMin(min);
+  reconfigure_->setConfigMax(max);
+  reconfigure_->setConfigDefault(dflt);
   reconfigure_->updateConfig(config_);
   reconfigure_->setCallback(
       [this](ehd_capsule::SimulationConfig& c, uint32_t level) { OnReconfigure(c, level); });
 }
 
 void RunController::OnReconfigure(ehd_capsule::SimulationConfig& config, uint32_t /*level*/) {
-  // Ca_E and Ca go to the simulation's queue (applied at the next step, or refused now); the
-  // shown configuration keeps the applied values.
+  // Ca_E and Ca go to the simulation's queue (applied at the next step, or refused now). The
+  // configuration handed back (the service's response, parameter_updates, the parameter
+  // server) is what the node runs with: a refused value is replaced by the kept one, so
+  // update_configuration and `dynparam get` show it, and /diagnostics says why.
   const long next_step = sim_.state().step + 1;
-  if (config.Ca_E != config_.Ca_E) {
+  std::string refused;
+  bool accepted = false;
+  const auto apply = [&](const char* name, double wanted, double& kept,
+                         void (Simulation::*set)(double)) {
+    if (wanted == kept) return;
     try {
-      sim_.SetCaE(config.Ca_E);
-      config_.Ca_E = config.Ca_E;
-      ROS_INFO("ehd_capsule: Ca_E = %g from step %ld", config.Ca_E, next_step);
+      (sim_.*set)(wanted);
+      kept = wanted;
+      accepted = true;
+      ROS_INFO("ehd_capsule: %s = %g from step %ld", name, wanted, next_step);
     } catch (const std::exception& e) {
-      ROS_ERROR("ehd_capsule: refused Ca_E = %g: %s (Ca_E stays %g)", config.Ca_E, e.what(),
-                config_.Ca_E);
+      char text[512];
+      std::snprintf(text, sizeof text, "refused %s = %g: %s (%s stays %g)", name, wanted, e.what(),
+                    name, kept);
+      ROS_ERROR("ehd_capsule: %s", text);
+      refused += (refused.empty() ? "" : "; ") + std::string(text);
     }
-    config_dirty_ = true;
-  }
-  if (config.Ca != config_.Ca) {
-    try {
-      sim_.SetCa(config.Ca);
-      config_.Ca = config.Ca;
-      ROS_INFO("ehd_capsule: Ca = %g from step %ld", config.Ca, next_step);
-    } catch (const std::exception& e) {
-      ROS_ERROR("ehd_capsule: refused Ca = %g: %s (Ca stays %g)", config.Ca, e.what(), config_.Ca);
-    }
-    config_dirty_ = true;
+  };
+  apply("Ca_E", config.Ca_E, config_.Ca_E, &Simulation::SetCaE);
+  apply("Ca", config.Ca, config_.Ca, &Simulation::SetCa);
+  if (!refused.empty()) {
+    last_refusal_ = refused;
+    diagnostics_due_ = true;
+  } else if (accepted && !last_refusal_.empty()) {
+    last_refusal_.clear();
+    diagnostics_due_ = true;
   }
   if (config.publish_every != config_.publish_every) {
     publish_every_ = config.publish_every;
@@ -125,6 +165,9 @@ void RunController::OnReconfigure(ehd_capsule::SimulationConfig& config, uint32_
   config_ = config;
   config_.Ca_E = ca_e;
   config_.Ca = ca;
+  config_.publish_every = publish_every_;
+  config_.paused = run_state_ == RunState::kPaused;  // not after a failure or the end
+  config = config_;
 }
 
 bool RunController::OnPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
@@ -221,6 +264,7 @@ void RunController::ResetRun() {
   config_.Ca_E = sim_.state().ca_e;
   config_.Ca = sim_.state().ca;
   config_dirty_ = true;
+  last_refusal_.clear();
   steps_since_reset_ = 0;
   after_reset_ = true;
   stepping_clock_.Restart(ros::WallTime::now().toSec());
@@ -246,6 +290,10 @@ void RunController::PublishStartState() {
 }
 
 void RunController::ApplyPendingRequests() {
+  if (diagnostics_due_) {
+    diagnostics_due_ = false;
+    PublishDiagnostics(true);
+  }
   if (config_dirty_) {
     config_dirty_ = false;
     config_.publish_every = publish_every_;
@@ -254,19 +302,27 @@ void RunController::ApplyPendingRequests() {
 }
 
 RunStatus RunController::Status() const {
+  RunStatus status;
+  status.refused = last_refusal_;
   switch (run_state_) {
     case RunState::kRunning:
-      return {false, "running"};
+      status.message = "running";
+      break;
     case RunState::kPaused:
-      return {false, "paused"};
+      status.message = "paused";
+      break;
     case RunState::kFinished:
-      return {false, end_reason_.empty() ? "finished" : "finished: " + end_reason_};
+      status.message = end_reason_.empty() ? "finished" : "finished: " + end_reason_;
+      break;
     case RunState::kStopped:
-      return {false, "stopped: " + end_reason_};
+      status.message = "stopped: " + end_reason_;
+      break;
     case RunState::kFailed:
+      status.error = true;
+      status.message = failure_;
       break;
   }
-  return {true, failure_};
+  return status;
 }
 
 void RunController::PublishDiagnostics(bool force) { pub_.PublishDiagnostics(force, Status()); }

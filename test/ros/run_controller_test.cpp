@@ -1,5 +1,5 @@
 // The run controller's parts without a ROS master: the progress line, the summary and its
-// stepping clock, and the large-run warning.
+// stepping clock, the ranges dynamic_reconfigure shows, and the large-run warning.
 #include "ehd_capsule/ros/run_controller.h"
 
 #include <gtest/gtest.h>
@@ -58,6 +58,31 @@ TEST(RunController, SteppingClockCountsOnlySteppingIterations) {
   clock.Restart(700.0);  // a reset in the middle of an iteration
   clock.Mark(800.0);
   EXPECT_DOUBLE_EQ(clock.seconds(), 0.0);
+}
+
+// dynamic_reconfigure's sliders (issue #44: +-1e9 and the .cfg's defaults) are what the node
+// accepts: each end taken, a hair beyond refused.
+TEST(RunController, AcceptedLiveValuesAreSetCaAndSetCaEsRanges) {
+  Simulation sim(LoadScene("shear_field", {"N=32", "M=32"}));
+  const LiveValueRanges r = AcceptedLiveValues(sim);
+  EXPECT_EQ(r.ca_e_min, 0.0);
+  EXPECT_EQ(r.ca_e_max, sim.scene().electric.max_ca_e);
+  EXPECT_NO_THROW(sim.SetCaE(r.ca_e_max));
+  EXPECT_THROW(sim.SetCaE(r.ca_e_max * 1.001), std::invalid_argument);
+  EXPECT_EQ(r.ca_min, 0.0);
+  EXPECT_GT(r.ca_max, sim.state().ca);
+  EXPECT_LE(r.ca_max, sim.scene().max_Ca);
+  EXPECT_NO_THROW(sim.SetCa(r.ca_max));
+  EXPECT_THROW(sim.SetCa(r.ca_max * 1.001), std::invalid_argument);
+  // The largest max_Ca: the wall Mach number may bound Ca first.
+  Simulation small(LoadScene("shear_field", {"N=32", "M=32", "max_Ca=10"}));
+  const LiveValueRanges s = AcceptedLiveValues(small);
+  EXPECT_LE(s.ca_max, 10.0);
+  EXPECT_NO_THROW(small.SetCa(s.ca_max));
+  EXPECT_THROW(small.SetCa(s.ca_max * 1.001), std::invalid_argument);
+  // Without a field: Ca_E 0 only.
+  Simulation plain(LoadScene("shear_field", {"N=32", "M=32", "Ca_E=0", "electric="}));
+  EXPECT_EQ(AcceptedLiveValues(plain).ca_e_max, 0.0);
 }
 
 // 3D: D_z along the field where it means something, D_xy and theta only with shear, the volume's

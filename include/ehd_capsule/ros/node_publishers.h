@@ -21,6 +21,10 @@ namespace ehd::ros_node {
 struct RunStatus {
   bool error = false;
   std::string message;  // running, paused, finished, or the failure
+  // The last refused live value ("refused Ca_E = 100: ...; Ca_E stays 0.6"), until a later
+  // change is accepted or the run is reset: a WARN status (unless an error) and the key
+  // "refused".
+  std::string refused;
 };
 
 class NodePublishers {

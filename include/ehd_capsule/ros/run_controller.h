@@ -4,8 +4,9 @@
 //
 // Follows turtlesim: callbacks run in ros::spinOnce on the loop's thread, between two steps, so
 // nothing needs a lock. A live Ca or Ca_E is handed to Simulation::SetCa / SetCaE at once (the
-// one pending-change queue: it takes effect at the next step, or is refused with the reason);
-// a reset is applied in its service call, which answers whether it was done.
+// one pending-change queue: it takes effect at the next step, or is refused with the reason,
+// and the configuration handed back keeps the value the node runs with); a reset is applied in
+// its service call, which answers whether it was done.
 #pragma once
 
 #include <dynamic_reconfigure/server.h>
@@ -69,6 +70,15 @@ class SteppingClock {
   double seconds_ = 0.0, last_ = 0.0;
   bool stepping_ = false;
 };
+
+// What the node accepts for the live values (Simulation::SetCaE / SetCa): the ranges
+// dynamic_reconfigure shows (rqt_reconfigure's sliders). Ca_E: [0, electric.max_Ca_E], [0, 0]
+// without a field; Ca: (0, min(max_Ca, the wall Mach limit)] (min is 0, itself refused), the
+// scene's Ca as both ends without shear.
+struct LiveValueRanges {
+  double ca_e_min = 0.0, ca_e_max = 0.0, ca_min = 0.0, ca_max = 0.0;
+};
+LiveValueRanges AcceptedLiveValues(const Simulation& sim);
 // The memory and time estimate of a scene too large to watch live; empty when it is not.
 std::string LargeRunWarning(const Scene& scene, const LatticeUnits& units);
 
@@ -126,7 +136,9 @@ class RunController {
   long advance_remaining_ = 0;
   int advance_steps_ = 1;
   ehd_capsule::SimulationConfig config_;
-  bool config_dirty_ = false;  // config_ must be pushed back to dynamic_reconfigure
+  bool config_dirty_ = false;     // config_ must be pushed back to dynamic_reconfigure
+  bool diagnostics_due_ = false;  // a refusal (or its end) to publish now
+  std::string last_refusal_;      // RunStatus::refused
 
   ros::ServiceServer pause_srv_, resume_srv_, reset_srv_, advance_srv_, advance_by_srv_;
   boost::recursive_mutex reconfigure_mutex_;
