@@ -416,6 +416,17 @@ void RunController::PrintProgress(bool force) {
   last_progress_step_ = s.step;
 }
 
+void RunController::RestoreWallTime() {
+  // The launch files set /use_sim_time for this node's clock; on a kept roscore it stayed true
+  // after the run, so a later plain `rostopic echo` waited for a /clock nobody publishes and
+  // `rostopic hz` gave rates in simulation time. The clock's owner takes it back (a fresh
+  // master has none).
+  if (!params_.use_sim_time || !params_.publish_clock) return;
+  if (ros::param::del("/use_sim_time")) {
+    ROS_INFO("ehd_capsule: /use_sim_time deleted (this node's /clock has stopped)");
+  }
+}
+
 int RunController::Run() {
   pub_.StartClocks();
   last_progress_ = run_start_ = ros::WallTime::now();
@@ -473,6 +484,7 @@ int RunController::Run() {
                .c_str());
   if (!pub_.field_is_current()) pub_.PublishField(true);  // the final state's layer
   if (recorder_) recorder_->Close();
+  RestoreWallTime();
   // Exit status: 1 if the simulation stopped on an error (even when the node was shut down
   // afterwards) or the recording failed, 0 otherwise; main() returns 1 for an invalid scene or
   // parameter.

@@ -97,7 +97,8 @@ class RunController {
   // rosnode kill: shutdown_request.h) or ROS shuts down; a simulation error stops
   // the stepping, and with ~exit_on_error ends the loop at once. Prints the summary, publishes
   // the final diagnostics and field, closes the bag. Returns the exit status: 1 when the
-  // simulation stopped on an error or the recording failed, else 0.
+  // simulation stopped on an error or the recording failed, else 0. A node that published
+  // /clock deletes /use_sim_time at the end (a kept roscore kept simulation time).
   int Run();
 
   RunState run_state() const { return run_state_; }
@@ -113,6 +114,7 @@ class RunController {
   void ApplyPendingRequests();
   void ResetRun();
   void PublishStartState();  // step 0: at the start and after a reset
+  void RestoreWallTime();    // at the end: /use_sim_time deleted when this node was the clock
   void StepOnce();
   void Fail(const std::string& reason);
   void OnRecordError(const std::string& reason);
