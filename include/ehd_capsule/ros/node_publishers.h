@@ -1,9 +1,9 @@
 // Everything the node publishes, and records into its bag with the same message: ~state,
 // ~shape, ~markers (every ~markers_every-th state), 3D ~surface_state and the latched
-// ~surface_mesh, ~state_throttled (wall-clock rate), ~field (wall-clock rate and simulation
-// interval), the latched ~scene and /tf_static, /clock (with /use_sim_time) and /diagnostics.
-// The messages themselves are made by state_messages.h; this class decides when, and keeps the
-// publishers and the rate bookkeeping.
+// ~surface_mesh, the latched ~state_throttled (wall-clock rate), ~field (wall-clock rate and
+// simulation interval), the latched ~scene and /tf_static, /clock (with /use_sim_time) and
+// /diagnostics. The messages themselves are made by state_messages.h; this class decides when, and
+// keeps the publishers and the rate bookkeeping.
 #pragma once
 
 #include <ros/ros.h>
