@@ -30,22 +30,45 @@ BagRecorder::~BagRecorder() {
   }
 }
 
-void BagRecorder::Open() {
-  // An existing bag is not overwritten unless asked to (a new run used to replace the previous
-  // one silently).
-  if (!overwrite_ && (std::ifstream(path_).good() || std::ifstream(active_path()).good())) {
-    throw std::invalid_argument("~bag " + path_ +
-                                " exists: choose another path or set ~overwrite true "
-                                "(launch argument overwrite:=true)");
-  }
+bool BagRecorder::Taken(const std::string& path) const {
+  return std::ifstream(path).good() || std::ifstream(path + ".active").good();
+}
+
+namespace {
+constexpr uint32_t kChunkBytes = 768 * 1024;  // rosbag's default
+}  // namespace
+
+std::unique_ptr<rosbag::Bag> BagRecorder::OpenFile(const std::string& path) const {
   auto bag = std::make_unique<rosbag::Bag>();
-  bag->open(active_path(), rosbag::bagmode::Write);
-  bag_ = std::move(bag);
+  bag->open(path + ".active", rosbag::bagmode::Write);
+  bag->setChunkThreshold(0);  // each message of the start its own chunk (StartWritten)
+  return bag;
+}
+
+void BagRecorder::StartWritten() {
+  if (bag_) bag_->setChunkThreshold(kChunkBytes);
+}
+
+void BagRecorder::StartCounts() {
   states_ = 0;
   failure_.clear();
   bytes_ = 0.0;
   rate_states0_ = -1;
   rate_reported_ = false;
+  state_start_bytes_ = 0.0;
+  first_state_reported_ = false;
+}
+
+void BagRecorder::Open() {
+  // An existing bag is not overwritten unless asked to (a new run used to replace the previous
+  // one silently).
+  if (!overwrite_ && Taken(path_)) {
+    throw std::invalid_argument("~bag " + path_ +
+                                " exists: choose another path or set ~overwrite true "
+                                "(launch argument overwrite:=true)");
+  }
+  bag_ = OpenFile(path_);
+  StartCounts();
   ROS_INFO("ehd_capsule: recording to %s (as %s until closed)", path_.c_str(),
            active_path().c_str());
 }
@@ -62,14 +85,58 @@ void BagRecorder::Close() {
   ROS_INFO("ehd_capsule: bag %s closed with %ld states", path_.c_str(), states_);
 }
 
-void BagRecorder::OpenNext() {
-  Close();
-  ++serial_;
-  std::string stem = base_path_;
+namespace {
+
+std::string NumberedPath(const std::string& base, int serial) {
+  std::string stem = base;
   if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, ".bag") == 0)
     stem.resize(stem.size() - 4);
-  path_ = stem + "." + std::to_string(serial_) + ".bag";
-  Open();
+  return stem + "." + std::to_string(serial) + ".bag";
+}
+
+}  // namespace
+
+int BagRecorder::NextSerial() const {
+  int serial = serial_ + 1;
+  // An earlier run's <stem>.1.bag made the reset fail and the run go on unrecorded: take the
+  // next free number instead (with ~overwrite the series is overwritten, as the bag itself).
+  while (!overwrite_ && Taken(NumberedPath(base_path_, serial))) ++serial;
+  return serial;
+}
+
+std::string BagRecorder::NextPath() const { return NumberedPath(base_path_, NextSerial()); }
+
+void BagRecorder::OpenNext() {
+  const int serial = NextSerial();
+  const std::string next = NumberedPath(base_path_, serial);
+  // Opened before the current bag is closed: if it cannot be (a removed directory, no space for
+  // its header), the recording goes on in the bag it was in.
+  std::unique_ptr<rosbag::Bag> bag = OpenFile(next);
+  Close();
+  serial_ = serial;
+  path_ = next;
+  bag_ = std::move(bag);
+  StartCounts();
+  ROS_INFO("ehd_capsule: recording to %s (as %s until closed)", path_.c_str(),
+           active_path().c_str());
+}
+
+double BagRecorder::FreeBytes(std::string& directory) const {
+  const std::string::size_type slash = path_.find_last_of('/');
+  directory = slash == std::string::npos ? "." : path_.substr(0, std::max<size_t>(slash, 1));
+  struct statvfs fs {};
+  if (statvfs(directory.c_str(), &fs) != 0) return -1.0;
+  return static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+}
+
+std::optional<RecordingRate> BagRecorder::FirstState() {
+  if (first_state_reported_ || !bag_ || states_ < 1) return std::nullopt;
+  first_state_reported_ = true;
+  RecordingRate rate;
+  rate.states = 1;
+  rate.bytes_per_state = bytes_ - state_start_bytes_;
+  rate.free_bytes = FreeBytes(rate.directory);
+  return rate;
 }
 
 std::optional<RecordingRate> BagRecorder::SampleRate(double wall_seconds) {
@@ -88,12 +155,7 @@ std::optional<RecordingRate> BagRecorder::SampleRate(double wall_seconds) {
   rate.seconds = seconds;
   rate.bytes_per_state = (bytes_ - rate_bytes0_) / rate.states;
   rate.bytes_per_second = (bytes_ - rate_bytes0_) / seconds;
-  const std::string::size_type slash = path_.find_last_of('/');
-  rate.directory = slash == std::string::npos ? "." : path_.substr(0, std::max<size_t>(slash, 1));
-  struct statvfs fs {};
-  if (statvfs(rate.directory.c_str(), &fs) == 0) {
-    rate.free_bytes = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
-  }
+  rate.free_bytes = FreeBytes(rate.directory);
   return rate;
 }
 
@@ -158,6 +220,30 @@ RecordingReport DescribeRecordingRate(const RecordingRate& rate, long states_lef
     report.warning = text;
   }
   return report;
+}
+
+std::string FirstStateWarning(const RecordingRate& first, long states_left) {
+  if (first.free_bytes < 0.0 || first.bytes_per_state <= 0.0) return "";
+  const std::string advice = "publish_every:=N or max_step_rate:=R record less";
+  char text[400];
+  if (states_left >= 0) {
+    const double needed = first.bytes_per_state * static_cast<double>(states_left);
+    if (needed <= first.free_bytes) return "";
+    std::snprintf(text, sizeof text,
+                  "the bag will fill the disk before the run ends: the %ld states left need "
+                  "about %s, %s free on %s (estimated from the first state, %s); %s",
+                  states_left, ByteSize(needed).c_str(), ByteSize(first.free_bytes).c_str(),
+                  first.directory.c_str(), ByteSize(first.bytes_per_state).c_str(), advice.c_str());
+    return text;
+  }
+  const double fit = first.free_bytes / first.bytes_per_state;
+  if (fit >= static_cast<double>(kFewStates)) return "";
+  std::snprintf(text, sizeof text,
+                "the %s free on %s hold only about %.0f states of the first state's size (%s); "
+                "%s",
+                ByteSize(first.free_bytes).c_str(), first.directory.c_str(), fit,
+                ByteSize(first.bytes_per_state).c_str(), advice.c_str());
+  return text;
 }
 
 std::string OsReason(int error, const std::string& path) {

@@ -38,7 +38,9 @@ NodePublishers::NodePublishers(ros::NodeHandle& nh, ros::NodeHandle& pnh,
   markers_every_ = params.markers_every > 0 ? params.markers_every : sim.dimension() == 3 ? 10 : 1;
 
   state_pub_ = pnh.advertise<ehd_capsule::CapsuleState>("state", 1000);
-  throttled_pub_ = pnh.advertise<ehd_capsule::CapsuleState>("state_throttled", 10);
+  // Latched: while paused nothing new is published, and a late subscriber (`rostopic echo -n1`
+  // after ~advance_by) waited for ever.
+  throttled_pub_ = pnh.advertise<ehd_capsule::CapsuleState>("state_throttled", 10, /*latch=*/true);
   field_pub_ = pnh.advertise<visualization_msgs::MarkerArray>("field", 2);
   tf_static_pub_ = nh.advertise<tf2_msgs::TFMessage>("/tf_static", 1, /*latch=*/true);
   shape_pub_ = pnh.advertise<geometry_msgs::PolygonStamped>("shape", 10);
@@ -74,23 +76,25 @@ void NodePublishers::PublishStaticTransform() { tf_static_pub_.publish(StaticTra
 
 void NodePublishers::RecordBagHeader() {
   if (!recorder_) return;
-  // The frame's static transform, as a latched connection so `rosbag play` latches it again and
-  // rviz has the frame on replay.
+  // The frame's static transform and the scene, as latched connections (as they are
+  // published), so `rosbag play` latches them again: rviz has the frame, and a tool that
+  // subscribes late the scene.
   recorder_->WriteLatched("/tf_static", StaticTransform(params_), StampNow());
   std_msgs::String scene_msg;
   scene_msg.data = sim_.scene().yaml_text;
-  Record("scene", scene_msg, StampNow());
+  recorder_->WriteLatched("scene", scene_msg, StampNow());
 }
 
 void NodePublishers::PublishSurfaceMesh() {
   if (sim_.dimension() != 3) return;
   const ehd_capsule::SurfaceMesh mesh = MakeSurfaceMesh(sim_, settings_, StampNow());
   surface_mesh_pub_.publish(mesh);
-  Record("surface_mesh", mesh, StampNow());
+  if (recorder_) recorder_->WriteLatched("surface_mesh", mesh, StampNow());
 }
 
 void NodePublishers::PublishState() {
   const ros::Time stamp = StampNow();
+  if (recorder_) recorder_->BeginState();
   // The clock goes with the states (at publish_every 100 it used to be 40% of a bag, published
   // every step), and only from the node that owns it (~publish_clock).
   if (params_.use_sim_time && params_.publish_clock) {
@@ -163,6 +167,12 @@ void NodePublishers::PublishDiagnostics(bool force, const RunStatus& run) {
   status.hardware_id = params_.scene;
   status.level = run.error ? status.ERROR : status.OK;
   status.message = run.message;
+  if (!run.refused.empty() && !run.error) {
+    // A refused live value, visible to whoever changed it (dynamic_reconfigure's caller gets
+    // the kept value back; `dynparam set` says nothing).
+    status.level = status.WARN;
+    status.message += "; " + run.refused;
+  }
   const SimulationState& s = sim_.state();
   auto add = [&status](const std::string& key, const std::string& value) {
     diagnostic_msgs::KeyValue kv;
@@ -179,6 +189,7 @@ void NodePublishers::PublishDiagnostics(bool force, const RunStatus& run) {
   add("max_mach", std::to_string(s.max_mach));
   add("Ca_E", std::to_string(s.ca_e));
   add("Ca", std::to_string(s.ca));
+  if (!run.refused.empty()) add("refused", run.refused);
   if (recorder_ && !recorder_->failure().empty() && status.level != status.ERROR) {
     status.level = status.ERROR;
     status.message = recorder_->failure();

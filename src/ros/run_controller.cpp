@@ -17,13 +17,36 @@ std::string FormatProgressLine(const SimulationState& s, const ShownMeasures& m,
 }
 
 std::string FormatSummary(const std::string& how, const SimulationState& s, const ShownMeasures& m,
-                          const std::string& time_unit, double wall_seconds) {
-  char head[160], tail[64];
+                          const std::string& time_unit, double wall_seconds,
+                          const SteppingTime& stepping) {
+  char head[160], tail[160];
   std::snprintf(head, sizeof head, "summary: %s after %ld steps, t = %.4g %s: ", how.c_str(),
                 s.step, s.time, time_unit.c_str());
-  std::snprintf(tail, sizeof tail, "; %.1f s wall (%.0f steps/s)", wall_seconds,
-                wall_seconds > 0 ? s.step / wall_seconds : 0.0);
+  // The rate of the steps since the last reset over the time spent stepping them: wall time
+  // since the start, and paused time, used to be counted too ("610.0 s wall (14 steps/s)").
+  std::snprintf(tail, sizeof tail,
+                "; %.1f s wall, %ld steps in %.1f s of stepping%s (%.0f steps/s)", wall_seconds,
+                stepping.steps, stepping.seconds,
+                stepping.after_reset ? " since the last reset" : "",
+                stepping.seconds > 0 ? stepping.steps / stepping.seconds : 0.0);
   return head + FormatMeasures(s, m, ", ") + tail;
+}
+
+LiveValueRanges AcceptedLiveValues(const Simulation& sim) {
+  const Scene& scene = sim.scene();
+  const LatticeUnits& u = sim.units();
+  LiveValueRanges r;
+  r.ca_e_max = sim.has_electric_field() ? scene.electric.max_ca_e : 0.0;
+  if (scene.has_shear()) {
+    // Simulation::SetCa's limits: max_Ca and the wall Mach number k L / c_s <= max_mach, with
+    // k = Ca T / (mu a); a hair below the latter so that its end is itself accepted.
+    const double mach_limit = scene.numerics.max_mach * kLatticeSoundSpeed / u.half_width *
+                              u.viscosity * u.radius / u.tension * (1.0 - 1e-12);
+    r.ca_max = std::min(scene.max_Ca, mach_limit);
+  } else {
+    r.ca_min = r.ca_max = sim.state().ca;
+  }
+  return r;
 }
 
 std::string LargeRunWarning(const Scene& scene, const LatticeUnits& units) {
@@ -66,7 +89,10 @@ RunController::RunController(ros::NodeHandle& pnh, const NodeParameters& params,
   advance_srv_ = pnh.advertiseService("advance", &RunController::OnAdvance, this);
   advance_by_srv_ = pnh.advertiseService("advance_by", &RunController::OnAdvanceBy, this);
 
-  // The dynamic_reconfigure defaults are the scene's values, not the .cfg's.
+  // The dynamic_reconfigure values and defaults are the scene's, not the .cfg's, and so are the
+  // ranges shown (rqt_reconfigure's sliders). The .cfg's own ranges stay wide: the server clamps
+  // a request to them before the node sees it, and a value outside the scene's range must be
+  // refused with what was asked for, not applied as the range's end.
   config_.Ca_E = sim_.state().ca_e;
   config_.Ca = sim_.state().ca;
   config_.publish_every = publish_every_;
@@ -74,35 +100,55 @@ RunController::RunController(ros::NodeHandle& pnh, const NodeParameters& params,
   config_.advance_steps = advance_steps_;
   reconfigure_ = std::make_unique<dynamic_reconfigure::Server<ehd_capsule::SimulationConfig>>(
       reconfigure_mutex_, pnh);
+  ehd_capsule::SimulationConfig min, max, dflt;
+  reconfigure_->getConfigMin(min);
+  reconfigure_->getConfigMax(max);
+  const LiveValueRanges ranges = AcceptedLiveValues(sim_);
+  min.Ca_E = ranges.ca_e_min;
+  max.Ca_E = ranges.ca_e_max;
+  min.Ca = ranges.ca_min;
+  max.Ca = ranges.ca_max;
+  dflt = config_;
+  reconfigure_->setConfigMin(min);
+  reconfigure_->setConfigMax(max);
+  reconfigure_->setConfigDefault(dflt);
   reconfigure_->updateConfig(config_);
   reconfigure_->setCallback(
       [this](ehd_capsule::SimulationConfig& c, uint32_t level) { OnReconfigure(c, level); });
 }
 
 void RunController::OnReconfigure(ehd_capsule::SimulationConfig& config, uint32_t /*level*/) {
-  // Ca_E and Ca go to the simulation's queue (applied at the next step, or refused now); the
-  // shown configuration keeps the applied values.
+  // Ca_E and Ca go to the simulation's queue (applied at the next step, or refused now). The
+  // configuration handed back (the service's response, parameter_updates, the parameter
+  // server) is what the node runs with: a refused value is replaced by the kept one, so
+  // update_configuration and `dynparam get` show it, and /diagnostics says why.
   const long next_step = sim_.state().step + 1;
-  if (config.Ca_E != config_.Ca_E) {
+  std::string refused;
+  bool accepted = false;
+  const auto apply = [&](const char* name, double wanted, double& kept,
+                         void (Simulation::*set)(double)) {
+    if (wanted == kept) return;
     try {
-      sim_.SetCaE(config.Ca_E);
-      config_.Ca_E = config.Ca_E;
-      ROS_INFO("ehd_capsule: Ca_E = %g from step %ld", config.Ca_E, next_step);
+      (sim_.*set)(wanted);
+      kept = wanted;
+      accepted = true;
+      ROS_INFO("ehd_capsule: %s = %g from step %ld", name, wanted, next_step);
     } catch (const std::exception& e) {
-      ROS_ERROR("ehd_capsule: refused Ca_E = %g: %s (Ca_E stays %g)", config.Ca_E, e.what(),
-                config_.Ca_E);
+      char text[512];
+      std::snprintf(text, sizeof text, "refused %s = %g: %s (%s stays %g)", name, wanted, e.what(),
+                    name, kept);
+      ROS_ERROR("ehd_capsule: %s", text);
+      refused += (refused.empty() ? "" : "; ") + std::string(text);
     }
-    config_dirty_ = true;
-  }
-  if (config.Ca != config_.Ca) {
-    try {
-      sim_.SetCa(config.Ca);
-      config_.Ca = config.Ca;
-      ROS_INFO("ehd_capsule: Ca = %g from step %ld", config.Ca, next_step);
-    } catch (const std::exception& e) {
-      ROS_ERROR("ehd_capsule: refused Ca = %g: %s (Ca stays %g)", config.Ca, e.what(), config_.Ca);
-    }
-    config_dirty_ = true;
+  };
+  apply("Ca_E", config.Ca_E, config_.Ca_E, &Simulation::SetCaE);
+  apply("Ca", config.Ca, config_.Ca, &Simulation::SetCa);
+  if (!refused.empty()) {
+    last_refusal_ = refused;
+    diagnostics_due_ = true;
+  } else if (accepted && !last_refusal_.empty()) {
+    last_refusal_.clear();
+    diagnostics_due_ = true;
   }
   if (config.publish_every != config_.publish_every) {
     publish_every_ = config.publish_every;
@@ -119,6 +165,9 @@ void RunController::OnReconfigure(ehd_capsule::SimulationConfig& config, uint32_
   config_ = config;
   config_.Ca_E = ca_e;
   config_.Ca = ca;
+  config_.publish_every = publish_every_;
+  config_.paused = run_state_ == RunState::kPaused;  // not after a failure or the end
+  config = config_;
 }
 
 bool RunController::OnPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
@@ -153,9 +202,27 @@ bool RunController::OnResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Res
 }
 
 bool RunController::OnReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  pending_reset_ = true;
+  // Applied here, between two steps (callbacks run on the loop's thread), so that the answer
+  // says whether it was done. While recording, the new timeline's bag is opened first: if it
+  // cannot be, the reset is refused and the recording goes on where it was (it used to go on
+  // unrecorded, with only a log line).
+  if (recorder_) {
+    const std::string next = recorder_->NextPath();
+    try {
+      recorder_->OpenNext();
+    } catch (const std::exception& e) {
+      res.success = false;
+      res.message = "reset refused: cannot record the new timeline in " + next + ": " + e.what();
+      res.message += recorder_->is_open() ? "; still recording to " + recorder_->active_path()
+                                          : "; not recording (" + recorder_->failure() + ")";
+      ROS_ERROR("ehd_capsule: %s", res.message.c_str());
+      return true;
+    }
+  }
+  ResetRun();
   res.success = true;
-  res.message = "reset queued; applied before the next step";
+  res.message = "reset to the initial state of scene '" + params_.scene + "'";
+  if (recorder_) res.message += "; recording to " + recorder_->path();
   return true;
 }
 
@@ -197,24 +264,35 @@ void RunController::ResetRun() {
   config_.Ca_E = sim_.state().ca_e;
   config_.Ca = sim_.state().ca;
   config_dirty_ = true;
+  last_refusal_.clear();
+  steps_since_reset_ = 0;
+  after_reset_ = true;
+  stepping_clock_.Restart(ros::WallTime::now().toSec());
   ROS_INFO("ehd_capsule: reset to the initial state of scene '%s'", params_.scene.c_str());
-  if (recorder_) {
-    // A new timeline starts at t = 0: a new bag, numbered (<stem>.1.bag, .2.bag, ...), so no
-    // bag holds two timelines; recording resumes after a failure too.
-    try {
-      recorder_->OpenNext();
-      pub_.RecordBagHeader();
-    } catch (const std::exception& e) {
-      ROS_ERROR("ehd_capsule: cannot record after the reset: %s", e.what());
-    }
-  }
+  // A new timeline starts at t = 0 in a new bag (OnReset opened it: <stem>.<n>.bag), so no bag
+  // holds two timelines; it starts as the first one does.
+  if (recorder_ && recorder_->is_open()) pub_.RecordBagHeader();
   pub_.PublishSurfaceMesh();
+  PublishStartState();
+}
+
+void RunController::PublishStartState() {
+  // The bag's first diagnostic (a bag whose recording fails in its first second used to hold
+  // none), then the state the timeline starts from, step 0, like every published step: a
+  // replay or a plot starts at t = 0. These and the bag's header are in chunks of their own,
+  // so `rosbag reindex` recovers them from a bag whose writing failed.
+  PublishDiagnostics(true);
+  pub_.PublishState();
+  if (recorder_) {
+    ReportRecordingRate();
+    recorder_->StartWritten();
+  }
 }
 
 void RunController::ApplyPendingRequests() {
-  if (pending_reset_) {
-    pending_reset_ = false;
-    ResetRun();
+  if (diagnostics_due_) {
+    diagnostics_due_ = false;
+    PublishDiagnostics(true);
   }
   if (config_dirty_) {
     config_dirty_ = false;
@@ -224,19 +302,27 @@ void RunController::ApplyPendingRequests() {
 }
 
 RunStatus RunController::Status() const {
+  RunStatus status;
+  status.refused = last_refusal_;
   switch (run_state_) {
     case RunState::kRunning:
-      return {false, "running"};
+      status.message = "running";
+      break;
     case RunState::kPaused:
-      return {false, "paused"};
+      status.message = "paused";
+      break;
     case RunState::kFinished:
-      return {false, end_reason_.empty() ? "finished" : "finished: " + end_reason_};
+      status.message = end_reason_.empty() ? "finished" : "finished: " + end_reason_;
+      break;
     case RunState::kStopped:
-      return {false, "stopped: " + end_reason_};
+      status.message = "stopped: " + end_reason_;
+      break;
     case RunState::kFailed:
+      status.error = true;
+      status.message = failure_;
       break;
   }
-  return {true, failure_};
+  return status;
 }
 
 void RunController::PublishDiagnostics(bool force) { pub_.PublishDiagnostics(force, Status()); }
@@ -278,6 +364,7 @@ void RunController::StepOnce() {
     return;
   }
   pub_.CountStep();
+  ++steps_since_reset_;
   const SimulationState& s = sim_.state();
   if (s.step % publish_every_ == 0) {
     pub_.PublishState();
@@ -299,12 +386,18 @@ void RunController::StepOnce() {
 }
 
 void RunController::ReportRecordingRate() {
-  const std::optional<RecordingRate> rate = recorder_->SampleRate(ros::WallTime::now().toSec());
-  if (!rate) return;
   long states_left = -1;  // a live run or ~until_steady: the end is not known
   if (params_.steps > 0) {
     states_left = std::max(0L, (params_.steps - sim_.state().step) / publish_every_);
   }
+  // From the first state's size at once: a disk that fills within the first second (before a
+  // rate is measured) used to fill without a warning.
+  if (const std::optional<RecordingRate> first = recorder_->FirstState()) {
+    const std::string warning = FirstStateWarning(*first, states_left);
+    if (!warning.empty()) ROS_WARN("ehd_capsule: %s", warning.c_str());
+  }
+  const std::optional<RecordingRate> rate = recorder_->SampleRate(ros::WallTime::now().toSec());
+  if (!rate) return;
   const RecordingReport report = DescribeRecordingRate(*rate, states_left);
   ROS_INFO("ehd_capsule: %s", report.info.c_str());
   if (!report.warning.empty()) ROS_WARN("ehd_capsule: %s", report.warning.c_str());
@@ -323,12 +416,26 @@ void RunController::PrintProgress(bool force) {
   last_progress_step_ = s.step;
 }
 
+void RunController::RestoreWallTime() {
+  // The launch files set /use_sim_time for this node's clock; on a kept roscore it stayed true
+  // after the run, so a later plain `rostopic echo` waited for a /clock nobody publishes and
+  // `rostopic hz` gave rates in simulation time. The clock's owner takes it back (a fresh
+  // master has none).
+  if (!params_.use_sim_time || !params_.publish_clock) return;
+  if (ros::param::del("/use_sim_time")) {
+    ROS_INFO("ehd_capsule: /use_sim_time deleted (this node's /clock has stopped)");
+  }
+}
+
 int RunController::Run() {
   pub_.StartClocks();
   last_progress_ = run_start_ = ros::WallTime::now();
+  stepping_clock_.Restart(run_start_.toSec());
   ros::WallTime next_step_time = ros::WallTime::now();
   HandleShutdownInTheLoop();  // SIGINT, SIGTERM, rosnode kill: end below, between two steps
+  PublishStartState();
   while (ros::ok() && !ShutdownRequested()) {
+    stepping_clock_.Mark(ros::WallTime::now().toSec());
     ros::spinOnce();
     ApplyPendingRequests();
     PublishDiagnostics(false);
@@ -343,6 +450,7 @@ int RunController::Run() {
       ros::WallDuration(0.01).sleep();
       continue;
     }
+    stepping_clock_.set_stepping(true);
     if (params_.max_step_rate > 0.0) {
       const ros::WallTime now = ros::WallTime::now();
       if (now < next_step_time) (next_step_time - now).sleep();
@@ -367,12 +475,16 @@ int RunController::Run() {
     ROS_INFO("ehd_capsule: %s at step %ld; stopping", end_reason_.c_str(), sim_.state().step);
   }
   PublishDiagnostics(true);
-  const double wall = (ros::WallTime::now() - run_start_).toSec();
+  const ros::WallTime end = ros::WallTime::now();
+  stepping_clock_.Mark(end.toSec());
+  const SteppingTime stepping{steps_since_reset_, stepping_clock_.seconds(), after_reset_};
   ROS_INFO("ehd_capsule: %s",
-           FormatSummary(how, sim_.state(), MeasuresOf(sim_.scene()), sim_.units().time_unit, wall)
+           FormatSummary(how, sim_.state(), MeasuresOf(sim_.scene()), sim_.units().time_unit,
+                         (end - run_start_).toSec(), stepping)
                .c_str());
   if (!pub_.field_is_current()) pub_.PublishField(true);  // the final state's layer
   if (recorder_) recorder_->Close();
+  RestoreWallTime();
   // Exit status: 1 if the simulation stopped on an error (even when the node was shut down
   // afterwards) or the recording failed, 0 otherwise; main() returns 1 for an invalid scene or
   // parameter.

@@ -128,6 +128,58 @@ TEST_F(BagRecorderTest, ResetsRecordNumberedBagsCountedPerBag) {
   EXPECT_TRUE(fs::exists(Path("series.2.bag")));
 }
 
+// Issue #44: an earlier run's <stem>.1.bag made ~reset fail and the run go on unrecorded. The
+// next free number is taken; with ~overwrite the series is overwritten as the bag itself.
+TEST_F(BagRecorderTest, ResetTakesTheNextFreeNumber) {
+  const std::string path = Path("again.bag");
+  std::ofstream(Path("again.1.bag")) << "an earlier run";
+  std::ofstream(Path("again.2.bag.active")) << "killed";
+  BagRecorder rec = Make(path);
+  rec.Open();
+  EXPECT_EQ(rec.NextPath(), Path("again.3.bag"));
+  rec.OpenNext();
+  EXPECT_EQ(rec.path(), Path("again.3.bag"));
+  EXPECT_EQ(rec.serial(), 3);
+  EXPECT_TRUE(rec.is_open());
+  EXPECT_TRUE(rec.Write("state", Text("x"), ros::Time(1.0)));
+  rec.OpenNext();
+  EXPECT_EQ(rec.path(), Path("again.4.bag"));
+  rec.Close();
+  std::ifstream in(Path("again.1.bag"));
+  std::string text;
+  std::getline(in, text);
+  EXPECT_EQ(text, "an earlier run");
+  EXPECT_EQ(Topics(Path("again.3.bag")).at("/ns/state"), 1);
+  BagRecorder over = Make(Path("over.bag"), /*overwrite=*/true);
+  std::ofstream(Path("over.1.bag")) << "an earlier run";
+  over.Open();
+  EXPECT_EQ(over.NextPath(), Path("over.1.bag"));
+  over.Close();
+}
+
+// A next bag that cannot be opened (its directory gone) leaves the recording where it was: the
+// reset is refused, and nothing goes unrecorded.
+TEST_F(BagRecorderTest, ANextBagThatCannotBeOpenedKeepsTheRecording) {
+  const fs::path sub = dir_ / "sub";
+  fs::create_directory(sub);
+  const std::string path = (sub / "run.bag").string();
+  BagRecorder rec = Make(path);
+  rec.Open();
+  rec.Write("state", Text("a"), ros::Time(1.0));
+  rec.CountState();
+  fs::rename(sub, dir_ / "moved");  // the open file moves along
+  EXPECT_THROW(rec.OpenNext(), rosbag::BagException);
+  EXPECT_TRUE(rec.is_open());
+  EXPECT_EQ(rec.path(), path);
+  EXPECT_EQ(rec.serial(), 0);
+  EXPECT_EQ(rec.states(), 1);
+  EXPECT_TRUE(rec.Write("state", Text("b"), ros::Time(2.0)));
+  rec.CountState();
+  fs::rename(dir_ / "moved", sub);
+  rec.Close();
+  EXPECT_EQ(Topics(path).at("/ns/state"), 2);
+}
+
 TEST_F(BagRecorderTest, LatchedConnection) {
   const std::string path = Path("latched.bag");
   BagRecorder rec = Make(path);
@@ -186,6 +238,7 @@ TEST_F(BagRecorderTest, SampleRateMeasuresTheBagOnceFromItsFirstSecond) {
   const std::string path = Path("rate.bag");
   BagRecorder rec = Make(path);
   rec.Open();
+  rec.StartWritten();  // rosbag's chunks from here (the start has chunks of its own)
   EXPECT_FALSE(rec.SampleRate(100.0));  // no state yet
   const std::string payload(10000, 'x');
   double t = 100.0;
@@ -246,6 +299,45 @@ TEST(RecordingRate, ReportsTheCostAndWarnsBeforeTheDiskFills) {
   rate.free_bytes = -1;
   EXPECT_NE(DescribeRecordingRate(rate, -1).info.find("free space on /tmp unknown"),
             std::string::npos);
+}
+
+// Issue #44: a disk that fills before the first rate measurement (1 s) gave no warning. The
+// first state's size (all its messages since BeginState) gives one at once.
+TEST_F(BagRecorderTest, FirstStateSizeWarnsBeforeARateIsMeasured) {
+  BagRecorder rec = Make(Path("first.bag"));
+  rec.Open();
+  rec.WriteLatched("scene", Text(std::string(5000, 's')), ros::Time(0));  // not the state's
+  EXPECT_FALSE(rec.FirstState());
+  rec.BeginState();
+  rec.Write("state", Text(std::string(10000, 'x')), ros::Time(1.0));
+  rec.CountState();
+  rec.Write("markers", Text(std::string(2000, 'm')), ros::Time(1.0));
+  const std::optional<RecordingRate> first = rec.FirstState();
+  ASSERT_TRUE(first);
+  EXPECT_NEAR(first->bytes_per_state, 12000.0, 300.0);
+  EXPECT_EQ(first->directory, dir_.string());
+  EXPECT_GT(first->free_bytes, 0.0);
+  EXPECT_FALSE(rec.FirstState());  // once per bag
+  rec.Close();
+
+  RecordingRate r;
+  r.bytes_per_state = 12000;
+  r.free_bytes = 1.2e9;  // 100000 states
+  r.directory = "/data";
+  EXPECT_EQ(FirstStateWarning(r, 1000), "");
+  EXPECT_NE(FirstStateWarning(r, 1000000)
+                .find("the bag will fill the disk before the run ends: the 1000000 states left "
+                      "need about 12 GB, 1.2 GB free on /data (estimated from the first state, "
+                      "12 kB)"),
+            std::string::npos)
+      << FirstStateWarning(r, 1000000);
+  EXPECT_EQ(FirstStateWarning(r, -1), "");  // a live run: room for 100000 states
+  r.free_bytes = 12e6;                      // 1000 states
+  EXPECT_NE(FirstStateWarning(r, -1).find("the 12 MB free on /data hold only about 1000 states"),
+            std::string::npos)
+      << FirstStateWarning(r, -1);
+  r.free_bytes = -1;  // unknown
+  EXPECT_EQ(FirstStateWarning(r, 1000000), "");
 }
 
 TEST(RecordingRate, ByteSize) {

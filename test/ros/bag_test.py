@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""A recorded run (test/ros/bag.test) holds exactly steps/publish_every CapsuleState messages with
-consecutive published step numbers, the latched scene once, one shape and marker array per state,
+"""A recorded run (test/ros/bag.test) holds exactly steps/publish_every + 1 CapsuleState messages
+with consecutive published step numbers from step 0 (the state the run starts from), the scene
+once as a latched connection (so `rosbag play` latches it again), a /diagnostics from its start, one shape and marker array per state,
 one clock tick per state (not per step: at publish_every 100 per-step clocks were 40% of a
 bag), the frame's latched static transform, the field layer, and is closed (readable, not
 .active) when the node stops; scripts/plot_bag turns it into PNG plots."""
@@ -34,6 +35,9 @@ class BagTest(unittest.TestCase):
                        "/tf_static", "/ehd_capsule/field")}
             tf = [(m, c) for _, m, _, c in bag.read_messages(topics=["/tf_static"],
                                                               return_connection_header=True)]
+            scene = [(m, c) for _, m, _, c in bag.read_messages(
+                topics=["/ehd_capsule/scene"], return_connection_header=True)]
+            diagnostics = [m for _, m, _ in bag.read_messages(topics=["/diagnostics"])]
             fields = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/field"])]
             markers = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/markers"])]
         # scripts/plot_bag turns the same bag into the two PNG files it names.
@@ -50,11 +54,18 @@ class BagTest(unittest.TestCase):
         for png in written:
             self.assertGreater(os.path.getsize(png), 1000, png)
         os.remove(path)
-        self.assertEqual(len(states), steps // every)
-        self.assertEqual([m.step for m in states], list(range(every, steps + 1, every)))
+        self.assertEqual(len(states), steps // every + 1)
+        self.assertEqual([m.step for m in states], list(range(0, steps + 1, every)))
+        self.assertEqual(states[0].time, 0.0)
         self.assertEqual(counts["/ehd_capsule/shape"], len(states))
         self.assertEqual(counts["/ehd_capsule/markers"], len(states))
         self.assertEqual(counts["/ehd_capsule/scene"], 1)
+        # Latched in the bag as on the wire (issue #44 item 3).
+        self.assertIn(scene[0][1].get("latching"), ("1", b"1"), str(scene[0][1]))
+        self.assertIn("shear_field", scene[0][0].data)
+        # The bag's first diagnostic is from its start (step 0).
+        steps_of = [{kv.key: kv.value for kv in d.status[0].values}["step"] for d in diagnostics]
+        self.assertEqual(steps_of[0], "0")
         self.assertEqual(counts["/clock"], len(states))
         # The frame's static transform, latched, so a replay gives rviz the frame.
         self.assertEqual(counts["/tf_static"], 1)

@@ -61,9 +61,11 @@ class Node3dTest(unittest.TestCase):
             shapes = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/shape"])]
             fields = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/field"])]
             meshes = [m for _, m, _ in bag.read_messages(topics=["/ehd_capsule/surface_mesh"])]
+            latching = {c.topic: c.header.get("latching") for c in bag._get_connections()}
             surfaces = [m for _, m, _ in
                         bag.read_messages(topics=["/ehd_capsule/surface_state"])]
-        self.assertEqual([s.step for s in states], list(range(1, steps + 1)))
+        # From step 0, the state the run starts from (issue #44 item 3).
+        self.assertEqual([s.step for s in states], list(range(0, steps + 1)))
         ca_e = [s.ca_e for s in states]
         self.assertAlmostEqual(ca_e[0], 0.3)
         self.assertAlmostEqual(ca_e[-1], 0.6)
@@ -85,6 +87,10 @@ class Node3dTest(unittest.TestCase):
         self.assertLess(resultant, 0.05 * magnitude / 642 * 4 * math.pi,
                         "a neutral drop in a uniform field feels no net force")
         self.assertEqual(len(meshes), 1, "the triangles go into the bag once")
+        # Latched in the bag as on the wire, so a replay gives a late subscriber (rviz) the
+        # triangles and the scene (issue #44 item 3).
+        for topic in ("/ehd_capsule/surface_mesh", "/ehd_capsule/scene", "/tf_static"):
+            self.assertIn(latching.get(topic), ("1", b"1"), "%s not latched in the bag" % topic)
         mesh = meshes[0]
         self.assertEqual(mesh.vertex_count, 642)
         self.assertEqual(len(mesh.triangles), 3 * 1280)
@@ -95,9 +101,9 @@ class Node3dTest(unittest.TestCase):
             for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0])):
                 edges[(min(a, b), max(a, b))] = edges.get((min(a, b), max(a, b)), 0) + 1
         self.assertTrue(all(c == 2 for c in edges.values()), "not a closed surface")
-        self.assertEqual([s.step for s in surfaces], list(range(1, steps + 1)))
+        self.assertEqual([s.step for s in surfaces], list(range(0, steps + 1)))
         self.assertTrue(all(abs(s.surface_drift) < 0.01 for s in surfaces))
-        self.assertEqual(len(markers), (steps + markers_every - 1) // markers_every,
+        self.assertEqual(len(markers), (steps + 1 + markers_every - 1) // markers_every,
                          "marker arrays with every %d-th state" % markers_every)
         array = markers[-1]
         by_ns = {m.ns: m for m in array.markers}

@@ -9,9 +9,13 @@ What must hold, and why:
   against the total magnitude of the force density;
 - a change made through dynamic_reconfigure shows in the next message; Ca = 0 is refused (it
   would freeze the time, counted in units of 1/k);
+- a refused value is reported back: the configuration returned is the one the node runs with,
+  /diagnostics says WARN with the refusal; the ranges and defaults dynamic_reconfigure shows are
+  the scene's (issue #44 item 1);
 - ~state_throttled follows at a wall-clock rate of at most 20 Hz;
 - pause stops the steps, advance takes exactly `advance_steps` steps, advance_by exactly the
-  steps of its request, resume continues;
+  steps of its request, resume continues; ~state_throttled is latched, so a subscriber that
+  comes while paused gets the state the run stands at (issue #44 item 5);
 - an invalid scene makes the node exit non-zero with a message naming the problem.
 """
 import math
@@ -152,6 +156,55 @@ class NodeTest(unittest.TestCase):
         self.assertGreaterEqual(cfg["Ca_E"], 0.0, "refused value still shown as set")
         self.assertGreater(msgs[-1].step, last.step, "node stopped after a refused value")
 
+    def test_4a_refusal_reported_back_and_scene_ranges(self):
+        # Issue #44 item 1: update_configuration returned Ca_E 50 while the node kept 0.6.
+        from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+        import time
+        kept = self.client.get_configuration(timeout=10)["Ca_E"]
+        statuses = []
+        sub = rospy.Subscriber("/diagnostics", DiagnosticArray,
+                               lambda m: statuses.extend(s for s in m.status
+                                                         if s.name.startswith(NODE + ":")))
+        deadline = time.time() + 10.0
+        while sub.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.05)
+        returned = self.client.update_configuration({"Ca_E": 50.0})
+        self.assertEqual(returned["Ca_E"], kept, "the refused Ca_E = 50 returned as set")
+        self.assertEqual(self.client.get_configuration(timeout=10)["Ca_E"], kept)
+        returned = self.client.update_configuration({"Ca": -1.0})
+        self.assertGreater(returned["Ca"], 0.0, "the refused Ca = -1 returned as set")
+        # The refusal in /diagnostics: WARN, the value asked for and why, the key "refused".
+        deadline = time.time() + 10.0
+        warned = []
+        while time.time() < deadline and not warned:
+            warned = [s for s in list(statuses) if s.level == DiagnosticStatus.WARN and
+                      "refused Ca = -1" in s.message]
+            time.sleep(0.05)
+        self.assertTrue(warned, "no WARN diagnostic for the refused Ca = -1: %s" %
+                        [(s.level, s.message) for s in statuses[-3:]])
+        values = {kv.key: kv.value for kv in warned[-1].values}
+        self.assertIn("out of range", values.get("refused", ""))
+        # An accepted change ends the warning.
+        self.client.update_configuration({"Ca_E": kept})
+        returned = self.client.update_configuration({"Ca_E": 0.25})
+        self.assertAlmostEqual(returned["Ca_E"], 0.25)
+        count = len(statuses)
+        deadline = time.time() + 10.0
+        while time.time() < deadline and not any(s.level == DiagnosticStatus.OK
+                                                 for s in statuses[count:]):
+            time.sleep(0.05)
+        sub.unregister()
+        self.assertTrue(any(s.level == DiagnosticStatus.OK for s in statuses[count:]),
+                        "still WARN after an accepted change: %s" % statuses[-1].message)
+        # The ranges and defaults shown (rqt_reconfigure's sliders) are the scene's (shear_field:
+        # Ca_E 0.3, Ca 0.04, electric.max_Ca_E 3, max_Ca 0.15), not the .cfg's +-1e9.
+        descriptions = {p["name"]: p for p in self.client.get_group_descriptions()["parameters"]}
+        ca_e, ca = descriptions["Ca_E"], descriptions["Ca"]
+        self.assertEqual((ca_e["min"], ca_e["max"], ca_e["default"]), (0.0, 3.0, 0.3))
+        self.assertEqual((ca["min"], ca["default"]), (0.0, 0.04))
+        self.assertGreater(ca["max"], 0.04)
+        self.assertLessEqual(ca["max"], 0.15)
+
     def test_4b_refuses_ca_zero(self):
         # Time is in units of 1/k: Ca = 0 would freeze it while the steps go on.
         self.client.update_configuration({"Ca": 0.0})
@@ -204,6 +257,10 @@ class NodeTest(unittest.TestCase):
         self.assertIsNotNone(m, "advance_by did not reach step %d" % (b + 12))
         time.sleep(0.5)
         self.assertEqual(self.rec.snapshot()[-1].step, b + 12, "advance_by overshot")
+        # Issue #44 item 5: `rostopic echo -n1 ~state_throttled` while paused waited for ever. A
+        # new subscriber gets the latched state the run stands at.
+        late = rospy.wait_for_message(NODE + "/state_throttled", CapsuleState, timeout=10)
+        self.assertEqual(late.step, b + 12, "~state_throttled does not hold the paused state")
         self.assertTrue(self.call("resume").success)
         m = self.rec.wait_for(lambda m: m.step > b + 17, timeout=30)
         self.assertIsNotNone(m, "did not resume")
@@ -266,7 +323,8 @@ class NodeTest(unittest.TestCase):
         self.assertFalse(os.path.exists(path + ".active"), "bag left .active after closing")
         import rosbag
         with rosbag.Bag(path) as bag:
-            self.assertEqual(bag.get_message_count("/ehd_overwrite_test/state"), 5)
+            # Steps 0 (the state the run starts from) to 5.
+            self.assertEqual(bag.get_message_count("/ehd_overwrite_test/state"), 6)
         os.remove(path)
 
 

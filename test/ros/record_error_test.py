@@ -39,6 +39,23 @@ class RecordErrorTest(unittest.TestCase):
         # The incomplete bag keeps its .active name (rosbag reindex repairs it).
         self.assertTrue(os.path.exists(path + ".active"))
         self.assertLessEqual(os.path.getsize(path + ".active"), 200 * 1024)
+        # Repaired, it holds /diagnostics (issue #44 item 6: a bag that failed within its first
+        # second held none), the first from its start.
+        import rosbag
+        import shutil
+        repaired = tempfile.mkdtemp(prefix="ehd_record_error_reindex_")
+        copy = os.path.join(repaired, "failed.bag")
+        shutil.copy(path + ".active", copy)
+        subprocess.run(["rosbag", "reindex", "--output-dir", repaired, copy],
+                       capture_output=True, timeout=60)
+        with rosbag.Bag(copy) as bag:
+            diagnostics = [m for _, m, _ in bag.read_messages(topics=["/diagnostics"])]
+            states = bag.get_message_count("/ehd_capsule/state")
+        shutil.rmtree(repaired)
+        self.assertGreater(states, 0, "the repaired bag holds no state")
+        self.assertTrue(diagnostics, "the failed bag holds no /diagnostics")
+        first = {kv.key: kv.value for kv in diagnostics[0].status[0].values}
+        self.assertEqual(first["step"], "0")
         os.remove(path + ".active")
 
     def start_limited(self, name, *args):

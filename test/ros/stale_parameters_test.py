@@ -4,6 +4,8 @@ roscore kept running:
   - roslaunch shear_field.launch 'set:={Ca_E: 0.5, ...}' runs at Ca_E = 0.5;
   - the same launch without Ca_E in set runs at the scene's Ca_E = 0.3 (the launch clears the
     node's private namespace first; roslaunch used to merge the new ~set into the old one);
+  - after a launch, /use_sim_time (which the launch set for the node's clock) is gone, so a
+    later plain `rostopic echo` does not wait for a /clock nobody publishes (issue #44 item 4);
   - a rosrun of the node after them takes the parameters the launch left (~steps, ~set/N, ...)
     and says so in a warning that names each with its value, but not the ones given on its own
     command line (_progress_period:=0).
@@ -31,6 +33,9 @@ def main():
         check("grid 32 x 32" in out, "the second launch's own set (N: 32) applies", out)
         check("taken from the parameter server" not in out,
               "a launch warns of no parameter from the server (it set them all)", out)
+        status, value = run(["rosparam", "get", "/use_sim_time"], ENV)
+        check(status != 0 or value.strip() == "false",
+              "no /use_sim_time = true left on the kept roscore after the launch", value)
 
         status, out = run(["rosrun", "ehd_capsule", "ehd_capsule_node", "_progress_period:=0"],
                           ENV)

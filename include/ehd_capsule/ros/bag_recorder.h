@@ -45,6 +45,11 @@ struct RecordingReport {
 // states_left: the states still to be recorded (a run with ~steps), < 0 when the end is not
 // known (a live run, ~until_steady): then the warning is for a disk full within an hour.
 RecordingReport DescribeRecordingRate(const RecordingRate& rate, long states_left);
+// The same warning from the first state's size alone (BagRecorder::FirstState, before a rate is
+// measured: a disk can fill within the first second): the states left do not fit, or, when the
+// end is not known, the free space holds fewer than kFewStates states. Empty when they fit.
+constexpr long kFewStates = 10000;
+std::string FirstStateWarning(const RecordingRate& first, long states_left);
 // 16200 -> "16.2 kB", 1.18e9 -> "1.18 GB" (SI units, as df -H and ls --si).
 std::string ByteSize(double bytes);
 
@@ -64,9 +69,19 @@ class BagRecorder {
   // Closes the bag and renames it to path(); logs the path and the states in it. A no-op when
   // no bag is open.
   void Close();
-  // For a reset: closes the bag and opens the next one of the series, <stem>.<n>.bag with n
-  // one more than the last (the stem is the bag as given, less ".bag"). Throws as Open().
+  // For a reset: opens the next bag of the series, <stem>.<n>.bag with n the first number above
+  // the last whose bag (and .active) does not exist (any number with ~overwrite; the stem is the
+  // bag as given, less ".bag"), then closes the one being written. Throws as Open(), with the
+  // bag being written (if any) still open and recording.
   void OpenNext();
+  // The path OpenNext would open.
+  std::string NextPath() const;
+
+  // A new bag's start (its header messages, first diagnostic and step-0 state) goes into chunks
+  // of their own: `rosbag reindex` recovers only terminated chunks, and a recording that failed
+  // within its first 768 kB chunk was recovered empty. StartWritten() goes back to rosbag's
+  // chunk size for the rest.
+  void StartWritten();
 
   bool is_open() const { return bag_ != nullptr; }
   const std::string& path() const { return path_; }  // the bag being (or last) recorded
@@ -74,7 +89,14 @@ class BagRecorder {
   int serial() const { return serial_; }  // 0 for the bag as given, n for <stem>.<n>.bag
   // The states (CapsuleState) written into the bag now open (or last closed).
   long states() const { return states_; }
+  // Around each state: BeginState before its first message (the clock), CountState after the
+  // CapsuleState is written.
+  void BeginState() { state_start_bytes_ = bytes_; }
   void CountState() { ++states_; }
+  // Once per bag, right after its first state: that state's bytes (all its messages since
+  // BeginState: clock, state, shape, markers, ...) as bytes_per_state, and the free space;
+  // bytes_per_second 0 (not measured). nullopt before and after.
+  std::optional<RecordingRate> FirstState();
   // The recording's cost, once per bag: from the first state counted to the first one at least
   // 1 s of wall time (wall_seconds, any epoch) later. Bytes are the messages' serialized sizes
   // plus rosbag's per-message record and index (within a few % of the file: rosbag writes in
@@ -100,6 +122,12 @@ class BagRecorder {
 
  private:
   void Fail(const std::exception& e, int error);  // error: errno right after the failure
+  // Opens path + ".active" (throws rosbag::BagException) and resets the per-bag counts.
+  std::unique_ptr<rosbag::Bag> OpenFile(const std::string& path) const;
+  void StartCounts();
+  bool Taken(const std::string& path) const;  // the bag or its .active exists
+  int NextSerial() const;
+  double FreeBytes(std::string& directory) const;
   std::string Resolve(const std::string& topic) const {
     return topic.empty() || topic.front() == '/' ? topic : resolve_name_(topic);
   }
@@ -121,6 +149,8 @@ class BagRecorder {
   long rate_states0_ = -1;
   double rate_bytes0_ = 0.0, rate_time0_ = 0.0;
   bool rate_reported_ = false;
+  double state_start_bytes_ = 0.0;
+  bool first_state_reported_ = false;
   // rosbag's bytes per message besides the message: the record's header (op, conn, time) and
   // length fields, and the chunk's index entry written at close.
   static constexpr double kRecordOverhead = 57.0;

@@ -1,9 +1,9 @@
 // Everything the node publishes, and records into its bag with the same message: ~state,
 // ~shape, ~markers (every ~markers_every-th state), 3D ~surface_state and the latched
-// ~surface_mesh, ~state_throttled (wall-clock rate), ~field (wall-clock rate and simulation
-// interval), the latched ~scene and /tf_static, /clock (with /use_sim_time) and /diagnostics.
-// The messages themselves are made by state_messages.h; this class decides when, and keeps the
-// publishers and the rate bookkeeping.
+// ~surface_mesh, the latched ~state_throttled (wall-clock rate), ~field (wall-clock rate and
+// simulation interval), the latched ~scene and /tf_static, /clock (with /use_sim_time) and
+// /diagnostics. The messages themselves are made by state_messages.h; this class decides when, and
+// keeps the publishers and the rate bookkeeping.
 #pragma once
 
 #include <ros/ros.h>
@@ -21,6 +21,10 @@ namespace ehd::ros_node {
 struct RunStatus {
   bool error = false;
   std::string message;  // running, paused, finished, or the failure
+  // The last refused live value ("refused Ca_E = 100: ...; Ca_E stays 0.6"), until a later
+  // change is accepted or the run is reset: a WARN status (unless an error) and the key
+  // "refused".
+  std::string refused;
 };
 
 class NodePublishers {
@@ -36,16 +40,20 @@ class NodePublishers {
   // frame_id, identity, so rviz has the frame).
   void PublishScene();
   void PublishStaticTransform();
-  // What every bag starts with: /tf_static as a latched connection, then ~scene.
+  // What every bag starts with: /tf_static, then ~scene, both as latched connections (so
+  // `rosbag play` latches them again for a late subscriber).
   void RecordBagHeader();
-  // 3D: the latched triangles, published and recorded (again after a reset); nothing in 2D.
+  // 3D: the latched triangles, published and recorded as a latched connection (again after a
+  // reset); nothing in 2D.
   void PublishSurfaceMesh();
   // One published state: /clock (with /use_sim_time and ~publish_clock), ~state, ~shape, 3D
   // ~surface_state, and ~markers with the first state and every markers_every-th after it.
   void PublishState();
   // After a reset the marker array comes with the next state again.
   void RestartMarkers() { states_since_markers_ = 0; }
-  // The latest state on ~state_throttled, at most ~throttled_rate times per wall second.
+  // The latest state on ~state_throttled, at most ~throttled_rate times per wall second;
+  // latched, so a subscriber that comes while the run is paused (`rostopic echo -n1` after
+  // ~advance_by) gets the state it stands at.
   void PublishThrottled();
   // The coloured layer on ~field, at most ~field_rate times per wall second and at least every
   // ~field_interval of simulation time; force: now (a failure, the end).
