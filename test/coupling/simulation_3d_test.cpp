@@ -76,11 +76,6 @@ TEST(Simulation3D, VertexTensionAndVelocityFollowTheShape) {
   EXPECT_THROW(Simulation(LoadScene("shear_field")).VertexTension(), std::logic_error);
 }
 
-// Small-deformation limit (Barthes-Biesel & Rallison 1981): D = (25/4) mu k a / E_s with the
-// surface Young modulus E_s = 3 G_s of the neo-Hookean law, i.e. D = (25/12) Ca for the
-// shear-modulus capillary number Ca = mu k a / G_s used here. On this coarse grid (a = 4 cells)
-// the immersed boundary's effective radius makes the capsule about 25 % more deformable; the
-// band below excludes the factor-3 error of mixing the two conventions.
 // The volume correction holds the enclosed volume at its initial value, and what it restores is
 // the leak the same run has without it (to first order the correction does not change the
 // flow), which the watchdog still sees. A coarse mesh (162 vertices, edges up to 1.5 h) leaks
@@ -105,13 +100,19 @@ TEST(Simulation3D, VolumeCorrectionRestoresTheLeakItReports) {
   EXPECT_NEAR(fixed.state().dxy, plain.state().dxy, 0.02 * plain.state().dxy);
 }
 
+// Small-deformation limit (Barthes-Biesel & Rallison 1981): D = (25/4) mu k a / E_s with the
+// surface Young modulus E_s = 3 G_s of the neo-Hookean law, i.e. D = (25/12) Ca for the
+// shear-modulus capillary number Ca = mu k a / G_s used here.
 TEST(Simulation3D, SmallDeformationIsNearTheLinearTheory) {
   Simulation sim(TinySphere().Build({"Ca=0.0125"}));
   while (sim.state().time < 2.0) sim.Step();
   const double theory = 25.0 / 12.0 * 0.0125;
   std::printf("Ca = 0.0125: D = %.4f, linear theory %.4f\n", sim.state().dxy, theory);
-  EXPECT_GT(sim.state().dxy, 0.8 * theory);
-  EXPECT_LT(sim.state().dxy, 1.5 * theory);
+  // Measured 0.0255 (-2 %) with the retracted immersed boundary at this a = 4 grid (its small-
+  // Ca error there is -5 %, docs/validation_3d.md); at the points it was about +25 %, and a
+  // modulus 10 % off moves D by 10 %: both fail the 8 % band.
+  EXPECT_GT(sim.state().dxy, 0.92 * theory);
+  EXPECT_LT(sim.state().dxy, 1.08 * theory);
 }
 
 // A drop (surface tension gamma, Ca = mu k a / gamma, viscosity ratio 1) obeys Taylor's small-
