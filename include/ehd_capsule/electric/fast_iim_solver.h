@@ -15,12 +15,12 @@
 //   sigma^- > sigma^+:  R = phi_n^+ + (sigma^-/[sigma]) G - v/[sigma]
 // R is affine in G; restarted GMRES solves R(G) = 0 with the mat-vec R(G) - R(0), one Poisson
 // solve each (eq. (59)-(61)), in the Schur solver shared with the 3D solver
-// (interface_schur_system.h; this file gives R and the unknowns). sigma^+ = sigma^-: G = v / sigma is known and no GMRES is run.
-// [f/sigma] and [d_xi(f/sigma)] in J are estimated at the markers by one-sided weighted
-// least-squares fits of each side's grid values of F (NormalDerivativeFit::SideExtrapolation,
-// O(h^3) and O(h^2)). Dirichlet box sides use the second-order ghost
-// (AddDirichletGhostCorrection), which the reference does not need (its boundary values sit on
-// grid nodes).
+// (interface_schur_system.h; this file gives R and the unknowns). sigma^+ = sigma^-: G = v / sigma
+// is known and no GMRES is run. [f/sigma] and [d_xi(f/sigma)] in J are estimated at the markers by
+// one-sided weighted least-squares fits of each side's grid values of F
+// (NormalDerivativeFit::SideExtrapolation, O(h^3) and O(h^2)). Dirichlet box sides use the
+// second-order ghost (AddDirichletGhostCorrection), which the reference does not need (its boundary
+// values sit on grid nodes).
 //
 // Departure from the text for sigma^- > sigma^+: the scaled residual is then
 // phi_n^- - (sigma^+/(sigma^- - sigma^+)) G + ..., and a near-constant G changes phi_n^- very
