@@ -247,6 +247,16 @@ TEST(EhdSim, BadInputIsRefusedNamingTheKeyOrOption) {
            " --steps 1",
        1,
        {"nested deeper than 500 levels at line"}},
+      // Scene values that cannot run, refused before the run naming the key responsible.
+      {tiny + "--steps 1 --set Ca=1e-300",
+       1,
+       {"(Ca) term", "out of reach", "maximum 1000", "raise 'Ca' (now 1e-300)"}},
+      {"electric_drop --set N=32 --set M=32 --steps 1 --set Oh=1e-300",
+       1,
+       {"(Oh) term", "out of reach", "maximum 1000", "raise 'Oh' (now 1e-300)"}},
+      {"biconcave_shear_3d --set N=16 --set mesh_subdivisions=2 --steps 1 --set C=1e6",
+       1,
+       {"elasticity (Ca, C)", "out of reach", "maximum 1000", "lower 'C' (now 1e+06)"}},
       // Options.
       {tiny + "--until inf", 2, {"--until must be a time in (0, 1e+06]", "'inf'"}},
       {tiny + "--until 1e300", 2, {"--until must be a time in (0, 1e+06]", "'1e300'"}},
