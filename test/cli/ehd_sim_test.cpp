@@ -257,6 +257,9 @@ TEST(EhdSim, BadInputIsRefusedNamingTheKeyOrOption) {
       {"biconcave_shear_3d --set N=16 --set mesh_subdivisions=2 --steps 1 --set C=1e6",
        1,
        {"elasticity (Ca, C)", "out of reach", "maximum 1000", "lower 'C' (now 1e+06)"}},
+      {tiny + "--steps 1 --set geometry.half_width=1000",
+       1,
+       {"Mach", "geometry.half_width = 1000", "lower geometry.half_width"}},
       // Options.
       {tiny + "--until inf", 2, {"--until must be a time in (0, 1e+06]", "'inf'"}},
       {tiny + "--until 1e300", 2, {"--until must be a time in (0, 1e+06]", "'1e300'"}},
