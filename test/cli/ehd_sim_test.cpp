@@ -260,6 +260,9 @@ TEST(EhdSim, BadInputIsRefusedNamingTheKeyOrOption) {
       {tiny + "--steps 1 --set geometry.half_width=1000",
        1,
        {"Mach", "geometry.half_width = 1000", "lower geometry.half_width"}},
+      {"electric_drop_3d --set dimension= --steps 1",
+       1,
+       {"'M' missing", "looks 3D (mesh_subdivisions, geometry.shape: sphere", "no 'dimension: 3'"}},
       // Options.
       {tiny + "--until inf", 2, {"--until must be a time in (0, 1e+06]", "'inf'"}},
       {tiny + "--until 1e300", 2, {"--until must be a time in (0, 1e+06]", "'1e300'"}},
