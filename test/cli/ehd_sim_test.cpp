@@ -263,6 +263,9 @@ TEST(EhdSim, BadInputIsRefusedNamingTheKeyOrOption) {
       {"electric_drop_3d --set dimension= --steps 1",
        1,
        {"'M' missing", "looks 3D (mesh_subdivisions, geometry.shape: sphere", "no 'dimension: 3'"}},
+      {"electric_drop_3d --set N=512 --set geometry.half_length=32 --steps 1",
+       1,
+       {"N = 512 (grid 4096 x 512 x 4096", "GB", "MemAvailable", "lower N"}},
       // Options.
       {tiny + "--until inf", 2, {"--until must be a time in (0, 1e+06]", "'inf'"}},
       {tiny + "--until 1e300", 2, {"--until must be a time in (0, 1e+06]", "'1e300'"}},
