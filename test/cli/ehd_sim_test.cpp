@@ -266,6 +266,17 @@ TEST(EhdSim, BadInputIsRefusedNamingTheKeyOrOption) {
       {"electric_drop_3d --set N=512 --set geometry.half_length=32 --steps 1",
        1,
        {"N = 512 (grid 4096 x 512 x 4096", "GB", "MemAvailable", "lower N"}},
+      {tiny + "--steps 1 --set geometry.shape=ellipse --set geometry.aspect_ratio=1e-300",
+       1,
+       {"the initial ellipse", "geometry.aspect_ratio (now 1e-300)"}},
+      {"electric_drop --set N=32 --set M=32 --steps 1 --set geometry.shape=ellipse --set "
+       "geometry.aspect_ratio=0.05",
+       1,
+       {"0.894427 cells thick along y", "raise geometry.aspect_ratio (now 0.05)"}},
+      {tiny + "--steps 1 --set geometry.center_y=3.9",
+       1,
+       {"the initial circle reaches y = 4.9 a, past the wall y = 4 a",
+        "move geometry.center_y (now 3.9)"}},
       // Options.
       {tiny + "--until inf", 2, {"--until must be a time in (0, 1e+06]", "'inf'"}},
       {tiny + "--until 1e300", 2, {"--until must be a time in (0, 1e+06]", "'1e300'"}},
