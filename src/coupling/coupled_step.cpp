@@ -3,6 +3,7 @@
 #include "ehd_capsule/coupling/coupled_step.h"
 
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 #include "ehd_capsule/coupling/force_term.h"
@@ -103,6 +104,60 @@ void PlaceInitialShape(const Scene& s, const LatticeUnits& u, Body<3>& body) {
   body.initial = mesh.vertices();
 }
 
+// The initial body against the box, before anything is allocated: a shape thinner than a cell
+// along an axis (a degenerate ellipse) or longer than a periodic box, or one that reaches a wall
+// or beyond, is refused naming the keys that place and size it. (A body inside the box but
+// within 2 h of a wall is left to the marker stage, which stops the run at the first step with
+// the marker and the wall.)
+template <int D>
+void CheckInitialShape(const Scene& s, const LatticeUnits& u,
+                       const Eigen::Matrix<double, D, Eigen::Dynamic>& x) {
+  const std::string fail = "scene " + s.name + ": the initial " + ToString(s.geometry.shape);
+  const bool ellipse = s.geometry.shape == InitialShape::kEllipse;
+  // The keys that make the body thicker in cells (the box's keys are named per axis).
+  const std::string thicker =
+      ellipse ? "raise geometry.aspect_ratio (now " + FormatValue(s.geometry.aspect_ratio) + ")"
+              : "raise N or lower geometry.half_width (a = " + FormatValue(u.radius) + " cells)";
+  const std::string shape_key =
+      ellipse ? ", geometry.aspect_ratio (now " + FormatValue(s.geometry.aspect_ratio) + ")" : "";
+  if (!x.allFinite()) throw SceneError(fail + " has points that are not finite: " + thicker);
+  const int extent[3] = {u.nx, u.ny, u.nz};
+  const double centre[3] = {s.geometry.center_x, s.geometry.center_y, s.geometry.center_z};
+  for (int a = 0; a < D; ++a) {
+    const std::string axis(1, "xyz"[a]);
+    const double lo = x.row(a).minCoeff(), hi = x.row(a).maxCoeff();
+    const double half_box = 0.5 * extent[a];  // the box is [-half_box, half_box] in cells
+    const std::string box_key = a == 1 || D == 2 ? "geometry.half_width" : "geometry.half_length";
+    const double box_a = half_box / u.radius;  // in units of a
+    if (hi - lo < 1.0) {
+      throw SceneError(fail + " is " + FormatValue(hi - lo) + " cells thick along " + axis +
+                       " (less than one cell: the grid cannot resolve it): " + thicker);
+    }
+    const bool periodic = a != 1 && s.has_shear();
+    if (periodic) {
+      if (hi - lo >= 2.0 * half_box) {
+        throw SceneError(
+            fail + " spans " + FormatValue((hi - lo) / u.radius) + " a along " + axis +
+            ", more than the periodic box (2 " + box_key + " = " + FormatValue(2.0 * box_a) +
+            " a): " + (ellipse ? "change" + shape_key.substr(1) + " or " : std::string()) +
+            "raise " + box_key);
+      }
+      continue;
+    }
+    if (lo > -half_box && hi < half_box) continue;
+    const bool upper = hi >= half_box;
+    const double reach = (upper ? hi : lo) / u.radius;
+    throw SceneError(
+        fail + " reaches " + axis + " = " + FormatValue(reach) + " a, " +
+        (std::abs(reach) == box_a ? "on" : "past") + " the wall " + axis + " = " +
+        FormatValue(upper ? box_a : -box_a) + " a (" + box_key + " = " + FormatValue(box_a) +
+        "): move geometry.center_" + axis + " (now " + FormatValue(centre[a]) + ")" +
+        (ellipse ? ", change" + shape_key.substr(1) : std::string()) + " or raise " + box_key +
+        " so that the body lies inside, at least 2 h = " + FormatValue(2.0 / u.radius) +
+        " a from the wall (the run stops at the first step closer than that)");
+  }
+}
+
 template <int D>
 class CoupledStepOf : public CoupledStep {
  public:
@@ -111,7 +166,10 @@ class CoupledStepOf : public CoupledStep {
     data_.state = &state;
     data_.controls = {units.shear_rate, units.field};
     data_.bodies.resize(1);  // the shipped scenes hold one body
-    for (Body<D>& body : data_.bodies) PlaceInitialShape(scene, units, body);
+    for (Body<D>& body : data_.bodies) {
+      PlaceInitialShape(scene, units, body);
+      CheckInitialShape<D>(scene, units, body.initial);
+    }
 
     // Built in dependency order (the fluid first: the stages around it act on its arrays); the
     // membrane before the electric stage, so that the force sources add up as membrane (+

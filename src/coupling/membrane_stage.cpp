@@ -11,6 +11,7 @@
 #include "ehd_capsule/membrane/membrane_model.h"
 #include "ehd_capsule/membrane/membrane_stability.h"
 #include "ehd_capsule/membrane/surface_elasticity.h"
+#include "ehd_capsule/scene/scene_keys.h"
 
 namespace ehd {
 namespace {
@@ -23,8 +24,32 @@ double StableLatticeStep(const Scene& scene, const MembraneStabilityLimits& limi
          (scene.numerics.integrator == MarkerTimeScheme::kForwardEuler ? 2.0 : 1.0);
 }
 
-int SubstepsNeeded(const Scene& scene, double dt_stable) {
-  return static_cast<int>(std::ceil(scene.numerics.membrane_substeps / dt_stable));
+// The key that sets the tension scale T: Ca with shear, Oh without.
+std::string TensionKey(const Scene& scene) { return scene.has_shear() ? "Ca" : "Oh"; }
+
+// "raise 'Ca' (now 1e-300)": the change of a key that lowers the membrane's stiffness.
+std::string Change(const char* verb, const std::string& key, double now) {
+  return std::string(verb) + " '" + key + "' (now " + FormatValue(now) + ")";
+}
+std::string SofterTension(const Scene& scene) {
+  return Change("raise", TensionKey(scene), scene.has_shear() ? scene.Ca : scene.Oh);
+}
+
+// The advice when the explicit limit is exceeded: the substeps needed (in double: a tiny Ca or
+// Oh needs more than an int holds) or, beyond numerics.membrane_substeps's maximum, the keys
+// that make the membrane softer (`softer`).
+std::string SubstepAdvice(const Scene& scene, double dt_stable, const std::string& softer) {
+  const int now = scene.numerics.membrane_substeps;
+  const double needed = std::ceil(now / dt_stable);
+  const double most = DeclaredSceneKey("numerics.membrane_substeps").range.hi;
+  if (needed <= most) {
+    return "set numerics.membrane_substeps >= " + std::to_string(static_cast<int>(needed)) +
+           " (now " + std::to_string(now) + ")";
+  }
+  return "out of reach: it would need numerics.membrane_substeps >= " +
+         (std::isfinite(needed) ? FormatValue(needed) : std::string("infinity")) +
+         ", beyond the key's maximum " + FormatValue(most) + " (now " + std::to_string(now) +
+         "); " + softer;
 }
 
 }  // namespace
@@ -49,14 +74,17 @@ struct MembraneMechanics<2> {
     const MembraneStabilityLimits limits = model_->Stability(reference, units.viscosity);
     const double dt_stable = StableLatticeStep(scene, limits);
     if (dt_stable < 1.0) {
-      const char* term = limits.bending_dt == limits.min_dt()   ? "bending (E_b)"
-                         : limits.elastic_dt == limits.min_dt() ? "elasticity (Ca)"
-                                                                : "tension (Ca)";
-      throw SceneError("scene " + scene.name + ": membrane explicit limit exceeded by the " + term +
-                       " term: stable lattice dt " + FormatValue(dt_stable) + " < 1 (" +
-                       model_->Describe() + "); set numerics.membrane_substeps >= " +
-                       std::to_string(SubstepsNeeded(scene, dt_stable)) + " (now " +
-                       std::to_string(scene.numerics.membrane_substeps) + ")");
+      const bool bending = limits.bending_dt == limits.min_dt();
+      const std::string key = TensionKey(scene);
+      const std::string term = bending                                ? "bending (E_b)"
+                               : limits.elastic_dt == limits.min_dt() ? "elasticity (" + key + ")"
+                                                                      : "tension (" + key + ")";
+      throw SceneError(
+          "scene " + scene.name + ": membrane explicit limit exceeded by the " + term +
+          " term: stable lattice dt " + FormatValue(dt_stable) + " < 1 (" + model_->Describe() +
+          "); " +
+          SubstepAdvice(scene, dt_stable,
+                        bending ? Change("lower", "E_b", scene.E_b) : SofterTension(scene)));
     }
     viscous_number_ = limits.viscous_number;
   }
@@ -165,10 +193,9 @@ struct MembraneMechanics<3> {
       const double dt_stable = StableLatticeStep(scene, limits);
       if (dt_stable < 1.0) {
         throw SceneError("scene " + scene.name +
-                         ": membrane explicit limit exceeded by the tension (Ca) term: stable "
-                         "lattice dt " +
-                         FormatValue(dt_stable) + " < 1; set numerics.membrane_substeps >= " +
-                         std::to_string(SubstepsNeeded(scene, dt_stable)));
+                         ": membrane explicit limit exceeded by the tension (" + TensionKey(scene) +
+                         ") term: stable lattice dt " + FormatValue(dt_stable) + " < 1; " +
+                         SubstepAdvice(scene, dt_stable, SofterTension(scene)));
       }
       stability_ = "explicit limit dt <= " + FormatValue(dt_stable);
       return;
@@ -195,14 +222,19 @@ struct MembraneMechanics<3> {
                                   units.viscosity, 1.0, q.min_edge);
     const double dt_stable = StableLatticeStep(scene, limits);
     if (dt_stable < 1.0) {
-      const char* term =
-          limits.bending_dt == limits.min_dt() ? "bending (E_b)" : "elasticity (Ca, C)";
+      const bool bending = limits.bending_dt == limits.min_dt();
+      const bool skalak = scene.law == SurfaceLawKind::kSkalak;
+      const std::string key = TensionKey(scene);
+      const std::string term =
+          bending ? "bending (E_b)" : "elasticity (" + key + (skalak ? ", C)" : ")");
+      const std::string softer =
+          bending  ? Change("lower", "E_b", scene.E_b)
+          : skalak ? Change("lower", "C", scene.area_dilation) + " or " + SofterTension(scene)
+                   : SofterTension(scene);
       throw SceneError("scene " + scene.name + ": membrane explicit limit exceeded by the " + term +
                        " term: stable lattice dt " + FormatValue(dt_stable) + " < 1 (" +
                        elasticity_->Describe() + ", shortest edge " + FormatValue(q.min_edge) +
-                       " h); set numerics.membrane_substeps >= " +
-                       std::to_string(SubstepsNeeded(scene, dt_stable)) + " (now " +
-                       std::to_string(scene.numerics.membrane_substeps) + ")");
+                       " h); " + SubstepAdvice(scene, dt_stable, softer));
     }
     stability_ = "explicit limit dt <= " + FormatValue(dt_stable);
   }

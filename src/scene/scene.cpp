@@ -125,6 +125,42 @@ class SceneReader {
     Fail(Name(key), "= " + ScalarText(v) + " is not accepted here: " + key.refusal);
   }
 
+  // The keys of the tree (and the choice values) that only a 3D scene accepts, "key" or "key:
+  // value": the evidence that a scene read as 2D lacks `dimension: 3`.
+  std::vector<std::string> OnlyThreeD(const std::vector<SceneModule>& modules) const {
+    std::map<std::string, std::vector<const SceneKey*>> declarations;
+    std::vector<std::string> order;
+    for (const SceneModule& m : modules) {
+      for (const SceneKey& k : m.keys) {
+        if (declarations[k.path].empty()) order.push_back(k.path);
+        declarations[k.path].push_back(&k);
+      }
+    }
+    auto three_d = [](const SceneKey* k) { return k->when.text.compare(0, 2, "3D") == 0; };
+    std::vector<std::string> found;
+    for (const std::string& path : order) {
+      const YAML::Node v = Find(path);
+      if (!v.IsDefined() || v.IsNull()) continue;
+      const std::vector<const SceneKey*>& keys = declarations[path];
+      if (std::all_of(keys.begin(), keys.end(), three_d)) {
+        found.push_back(path);
+        continue;
+      }
+      if (!v.IsScalar()) continue;
+      bool in_3d = false, in_other = false;
+      for (const SceneKey* k : keys) {
+        if (k->type != KeyType::kChoice) continue;
+        const bool listed =
+            std::find(k->choices.begin(), k->choices.end(), v.Scalar()) != k->choices.end();
+        (three_d(k) ? in_3d : in_other) |= listed;
+      }
+      if (in_3d && !in_other) found.push_back(path + ": " + v.Scalar());
+    }
+    return found;
+  }
+
+  bool Has(const std::string& path) const { return Find(path).IsDefined(); }
+
  private:
   static std::string Name(const SceneKey& key) { return "'" + key.path + "'"; }
 
@@ -290,21 +326,34 @@ Scene Validate(const YAML::Node& root, const std::string& origin) {
   }
   Scene s;
   std::set<std::string> read;
-  for (const SceneModule& m : modules) {
-    for (const SceneKey& k : m.keys) {
-      if (read.count(k.path)) continue;
-      if (k.when.Holds(s)) {
-        reader.Read(k, s);
-        read.insert(k.path);
-      } else if (last.at(k.path) == &k) {
-        reader.Refuse(k);
+  try {
+    for (const SceneModule& m : modules) {
+      for (const SceneKey& k : m.keys) {
+        if (read.count(k.path)) continue;
+        if (k.when.Holds(s)) {
+          reader.Read(k, s);
+          read.insert(k.path);
+        } else if (last.at(k.path) == &k) {
+          reader.Refuse(k);
+        }
+      }
+      if (m.check) {
+        m.check(s, [&](const std::string& message) {
+          throw SceneError("scene " + origin + ": " + message);
+        });
       }
     }
-    if (m.check) {
-      m.check(s, [&](const std::string& message) {
-        throw SceneError("scene " + origin + ": " + message);
-      });
-    }
+  } catch (const SceneError& e) {
+    // A 3D scene without its `dimension: 3` is read as 2D and fails on a 2D key ('M' missing):
+    // say what it looks like.
+    if (s.dimension != 2 || reader.Has("dimension")) throw;
+    const std::vector<std::string> evidence = reader.OnlyThreeD(modules);
+    if (evidence.empty()) throw;
+    std::string list;
+    for (const std::string& e3 : evidence) list += (list.empty() ? "" : ", ") + e3;
+    throw SceneError(
+        std::string(e.what()) + "; the scene looks 3D (" + list +
+        ") but has no 'dimension: 3' (the default is 2): add it, or remove those keys");
   }
   return s;
 }

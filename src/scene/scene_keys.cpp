@@ -126,6 +126,15 @@ SceneKey BlockKey(std::string path, std::string doc) {
 
 const std::vector<SceneModule>& SceneModules() { return AllModules(); }
 
+const SceneKey& DeclaredSceneKey(const std::string& path) {
+  for (const SceneModule& m : SceneModules()) {
+    for (const SceneKey& k : m.keys) {
+      if (k.path == path) return k;
+    }
+  }
+  throw std::logic_error("scene key '" + path + "' is not declared");
+}
+
 bool RegisterSceneModule(SceneModule module) {
   std::vector<SceneModule>& modules = AllModules();
   std::set<std::string> own;

@@ -59,9 +59,13 @@ LatticeUnits DeriveLatticeUnits(const Scene& s) {
   u.field = FieldForCaE(u, s.Ca_E);
   if (u.wall_mach > s.numerics.max_mach) {
     std::ostringstream m;
-    m << "scene " << s.name << ": wall speed k L = " << u.wall_speed << " is lattice Mach "
-      << u.wall_mach << " > " << s.numerics.max_mach
-      << " (numerics.max_mach); lower Re or numerics.tau, or the grid N";
+    // k L = (Re nu / a^2) (N / 2) with a = N / (2 L/a): 2 Re nu (L/a)^2 / N, nu = (tau - 1/2) / 3n.
+    m << "scene " << s.name << ": wall speed k L = 2 Re nu (L/a)^2 / N = " << u.wall_speed
+      << " is lattice Mach " << u.wall_mach << " > " << s.numerics.max_mach
+      << " (numerics.max_mach), set by geometry.half_width = " << s.geometry.half_width
+      << " (squared), Re = " << s.Re << ", numerics.tau = " << s.numerics.tau << " and N = " << s.N
+      << ": lower geometry.half_width, Re or numerics.tau, or raise N or "
+      << "numerics.membrane_substeps (now " << s.numerics.membrane_substeps << ")";
     throw SceneError(m.str());
   }
   return u;

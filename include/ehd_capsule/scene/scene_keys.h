@@ -128,6 +128,9 @@ struct SceneModule {
 // order.
 const std::vector<SceneModule>& SceneModules();
 std::vector<SceneModule> CoreSceneModules();
+// The first declaration of a key (its range, for messages that name the key's limits); throws
+// std::logic_error when no module declares it.
+const SceneKey& DeclaredSceneKey(const std::string& path);
 // Adds a module (at static initialisation: a force term's file registers itself). Throws
 // std::logic_error when one of its keys is declared already by another module.
 bool RegisterSceneModule(SceneModule module);
