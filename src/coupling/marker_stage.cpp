@@ -92,8 +92,10 @@ template <int D>
 void MarkerStage<D>::Move(long step, int index, Body<D>& body) {
   const double retraction = scene_.numerics.ib_retraction * grid_.h;
   if (retraction > 0.0) {
-    // The points the spread stage used (coupling/retracted_points.h), from the same positions.
-    RetractAlongNormals(body.shape, retraction, body.coupling);
+    // The points the spread stage retracted this step (coupling/retracted_points.h): the
+    // positions have not moved since.
+    if (body.coupling.cols() != body.size())
+      RetractAlongNormals(body.shape, retraction, body.coupling);
     ib_.Interpolate(VelocityOf<D>(fluid_), body.coupling, body.U);
     if (scene_.numerics.ib_extrapolate_velocity != 0) {
       try {
