@@ -30,14 +30,13 @@ void ExtrapolateToPoints(const PointsOf<D>& retracted, const PointsOf<D>& points
     xx += dx * dx.transpose();
     ux += (U.col(k) - u_mean) * dx.transpose();
   }
-  const Eigen::SelfAdjointEigenSolver<Matrix> spread(xx);
+  const Eigen::SelfAdjointEigenSolver<Matrix> spread(xx, Eigen::EigenvaluesOnly);
   const auto& lambda = spread.eigenvalues();  // ascending
   if (!(lambda(0) > 1e-12 * lambda(D - 1))) {
     throw std::invalid_argument(
         "ExtrapolateToPoints: the points do not span the dimension (no velocity gradient)");
   }
-  // A = ux xx^{-1} (xx symmetric).
-  Matrix gradient = ux * spread.operatorInverseSqrt() * spread.operatorInverseSqrt();
+  Matrix gradient = ux * xx.inverse();                  // xx is D x D and well conditioned here
   gradient.diagonal().array() -= gradient.trace() / D;  // the inside is incompressible
   U += gradient * (points - retracted);
 }

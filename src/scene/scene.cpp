@@ -740,9 +740,9 @@ SceneModule NumericsModule(const CoreConditions& c) {
            .Store(StoreNumerics(&SceneNumerics::redistribute_markers)),
        NumberKey("numerics.ib_retraction", Closed(0.0, 1.5), "cells",
                  "spread the force and interpolate the velocity at the points moved inward along "
-                 "their normals by this distance: removes the kernel's effective radius "
-                 "(coupling/retracted_points.h, docs/validation_3d.md); 0 = at the points "
-                 "(song2019)")
+                 "their normals by this distance (0.5: calibrated on a spherical capsule's exact "
+                 "small-Ca deformation and rotation; coupling/retracted_points.h, "
+                 "docs/validation_3d.md); 0 = at the points (song2019)")
            .Default(0.5)
            .Store(StoreNumerics(&SceneNumerics::ib_retraction)),
        IntegerKey("numerics.ib_extrapolate_velocity", 0, 1, "1",

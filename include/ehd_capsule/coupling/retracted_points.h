@@ -4,10 +4,11 @@
 //   X_r = X - delta n(X),
 // one point set for both operators, so spreading and interpolation stay adjoint (song2019 eqs.
 // (104), (106) at X_r). The cosine kernel's 4 h support makes the flow go round a body larger
-// than the marker surface (a + 0.7-0.9 h, measured by the stresslet of a rigid sphere and
-// cylinder); retracting the points by about that distance removes it (Breugem, J. Comput. Phys.
-// 231 (2012) 4469, sec. 2.4, for direct forcing; here delta is calibrated on the rigid sphere's
-// and cylinder's stresslets, docs/validation_3d.md).
+// than the marker surface (a + 0.7-0.9 h by the stresslet of a nearly rigid sphere, and a
+// small-Ca deformation 12-25 % above (25/12) Ca); retracting the points removes most of it
+// (Breugem, J. Comput. Phys. 231 (2012) 4469, for direct forcing). delta = 0.5 h is calibrated
+// on the exact small-Ca deformation and rotation of a spherical capsule; the stresslet would
+// need 0.8-1.0 h, which no single adjoint delta reconciles (docs/validation_3d.md).
 //
 // Departure from Breugem (rigid particles, whose velocity is prescribed): a membrane moves with
 // the fluid at its own position, not at X_r (the kinematic condition). The velocity at X_r is
