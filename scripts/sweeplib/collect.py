@@ -94,7 +94,7 @@ def write_tables(sweep, out, rows):
                   else "per run (grid key scene)",
                   ", with " + ", ".join("%s = %s" % (k, format_value(v))
                                         for k, v in sweep.fixed.items()) if sweep.fixed else "",
-                  format_value(sweep.t_end),
+                  _t_end_text(sweep),
                   " or at the steady state (tolerance %g)" % sweep.steady if sweep.steady else "",
                   sweep.steady_tolerance, os.path.relpath(sweep.path, runner_repo())), ""]
     header = [display_key(k) for k in keys] + [c[2] for c in COLUMNS]
@@ -108,6 +108,14 @@ def write_tables(sweep, out, rows):
         f.write("\n".join(lines) + "\n")
     os.replace(md_path + ".tmp", md_path)
     return csv_path, md_path
+
+
+def _t_end_text(sweep):
+    """stop.t_end, and the other end times of grid.variants entries with a t_end of their
+    own."""
+    others = sorted({r.t_end for r in sweep.runs if r.t_end != sweep.t_end})
+    return format_value(sweep.t_end) + (" (some variants to %s)" % ", ".join(
+        format_value(t) for t in others) if others else "")
 
 
 def runner_repo():
@@ -262,7 +270,8 @@ class CampaignRun:
     """What a campaign's table function (the sweep file's `table: FILE.py`) sees of one run.
 
     name, index, values (grid key -> value, tags without their prefix: `variant`, `case`),
-    label (the grid.variants label, or the name), overrides (the run's scene overrides:
+    label (the grid.variants label, or the name), t_end (the run's end time: stop.t_end, its
+    variant's t_end or --t-end), overrides (the run's scene overrides:
     dotted key -> value, `set` and the grid together), status (ok, failed, running (t = ...),
     not run), finished, error, stopped (t_end, steady, error), final (the last chunk's
     `ehd_sim run --summary-json` object: t, step, dxy, inclination_over_pi, d_field,
@@ -274,6 +283,7 @@ class CampaignRun:
         self.name, self.index = run.name, run.index
         self.values = {display_key(k): v for k, v in run.values.items()}
         self.label = sweep.variant_labels.get(run.values.get("tag.variant"), run.name)
+        self.t_end = run.t_end
         self.overrides = dict(run.overrides)
         self.status = row["status"]
         self.finished = row["status"] in ("ok", "failed")
@@ -292,14 +302,16 @@ class CampaignRun:
 
 def write_campaign_table(sweep, out, rows):
     """The campaign's own table (`table: FILE.py`): campaign.md (Markdown, what the old
-    script printed) and campaign.csv; returns their paths and the Markdown text."""
+    script printed: the notes, the table, the lines after it) and campaign.csv (the table);
+    returns their paths and the Markdown text."""
     runs = [CampaignRun(sweep, out, r) for r in rows]
     result = sweep.table.table(runs)
-    if not isinstance(result, tuple) or len(result) not in (2, 3):
-        raise ValueError("%s: table(runs) must return (header, rows) or (header, rows, notes)"
-                         % sweep.table.__file__)
+    if not isinstance(result, tuple) or len(result) not in (2, 3, 4):
+        raise ValueError("%s: table(runs) must return (header, rows), (header, rows, notes) or "
+                         "(header, rows, notes, after)" % sweep.table.__file__)
     header, body = result[0], result[1]
-    notes = result[2] if len(result) == 3 else []
+    notes = result[2] if len(result) >= 3 else []
+    after = result[3] if len(result) == 4 else []
     for i, r in enumerate(body):
         if len(r) != len(header):
             raise ValueError("%s: table row %d has %d cells, the header %d" % (
@@ -307,6 +319,7 @@ def write_campaign_table(sweep, out, rows):
     md = list(notes) + ["| " + " | ".join(header) + " |",
                         "|" + "|".join("---" for _ in header) + "|"]
     md += ["| " + " | ".join(str(c) for c in r) + " |" for r in body]
+    md += list(after)
     text = "\n".join(md) + "\n"
     md_path = os.path.join(out, "campaign.md")
     with open(md_path + ".tmp", "w") as f:
@@ -324,6 +337,7 @@ def write_campaign_table(sweep, out, rows):
 def collect(sweep, out, echo=False):
     """Writes table.csv, table.md, the campaign table (with `table:`) and the figures; returns
     (rows, paths written). echo: print the campaign table."""
+    os.makedirs(out, exist_ok=True)  # a campaign not started yet: its table of "not run"
     rows = rows_of(sweep, out)
     paths = list(write_tables(sweep, out, rows))
     if sweep.table is not None:

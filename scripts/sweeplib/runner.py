@@ -1,7 +1,7 @@
 """One run of a sweep: its folder, its chunks, resuming, its summary.
 
 A run is simulated in chunks: chunk k is one `ehd_sim run` process from t_(k-1) to
-t_k = k * record.checkpoint_every (the last one to stop.t_end) that restarts from the
+t_k = k * record.checkpoint_every (the last one to the run's t_end) that restarts from the
 checkpoint of chunk k-1 and writes its own time series and checkpoint. `ehd_sim` continues
 a run bit for bit from a checkpoint, so the chunked run gives the same numbers as one process.
 Chunk k's files are written under a .tmp name and renamed when the process has exited cleanly:
@@ -17,6 +17,7 @@ Run folder (<out>/runs/<name>/):
   run.log        the output of every chunk, with a header line each
   chunks/        while running: <k>.csv per chunk, the last committed <k>.ckpt
   series.csv     when done: the whole time series
+  sections.csv   with record.sections_every: the membrane's sections (ehd_sim run --sections)
   summary.json   when done: status, why it stopped, error, final values (from the last
                  chunk's `ehd_sim run --summary-json`), wall and CPU time; a run is finished
                  when its summary.json has an end reason (is_finished; summary.csv: the same
@@ -124,8 +125,9 @@ def read_summary(out, run):
 def progress_of(out, run, sweep):
     """(committed chunks, t reached) of an unfinished run."""
     chunks = os.path.join(run_dir(out, run), "chunks")
-    k = _committed(chunks, len(sweep.chunk_ends()))
-    return k, (sweep.chunk_ends()[k - 1] if k else 0.0)
+    ends = sweep.chunk_ends(run)
+    k = _committed(chunks, len(ends))
+    return k, (ends[k - 1] if k else 0.0)
 
 
 def _committed(chunks, n_chunks):
@@ -206,6 +208,24 @@ def _merge_csv(chunks, k, path):
     os.replace(path + ".tmp", path)
 
 
+def _merge_sections(chunks, k, path):
+    """The chunks' --sections files as one: a restarted chunk appends without a header."""
+    header = None
+    with open(path + ".tmp", "w") as out:
+        for j in range(1, k + 1):
+            p = os.path.join(chunks, "%d.sections.csv" % j)
+            if not os.path.exists(p):
+                continue
+            with open(p) as f:
+                for line in f.read().splitlines():
+                    if header is None:
+                        header = line
+                    elif line == header:
+                        continue
+                    out.write(line + "\n")
+    os.replace(path + ".tmp", path)
+
+
 def execute(sweep, run, out, ehd_sim, threads=1, retry_failed=False):
     """Runs (or resumes) one run to its end and returns its summary; returns the stored summary
     of a finished run without running anything. Raises Interrupted when the sweep is stopped
@@ -230,7 +250,7 @@ def _execute_locked(sweep, run, out, folder, ehd_sim, threads, retry_failed):
     if summary is not None and (summary["status"] == "ok" or not retry_failed):
         return summary
     scene_text = run.scene_yaml(sweep)
-    settings = sweep.run_settings()
+    settings = sweep.run_settings(run)
     scene_path = os.path.join(folder, "scene.yaml")
     settings_path = os.path.join(folder, "settings.json")
     chunks = os.path.join(folder, "chunks")
@@ -247,7 +267,7 @@ def _execute_locked(sweep, run, out, folder, ehd_sim, threads, retry_failed):
         _write_atomic(scene_path, scene_text)
         _write_atomic(settings_path, json.dumps(settings, indent=1) + "\n")
     os.makedirs(chunks, exist_ok=True)
-    ends = sweep.chunk_ends()
+    ends = sweep.chunk_ends(run)
     k = _committed(chunks, len(ends))
     resumed = 1 if k > 0 else 0
     # Clear what an interrupted attempt left: .tmp files, chunks past the commit point and the
@@ -275,6 +295,7 @@ def _execute_locked(sweep, run, out, folder, ehd_sim, threads, retry_failed):
         csv_tmp = os.path.join(chunks, "%d.csv.tmp" % k)
         ckpt_tmp = os.path.join(chunks, "%d.ckpt.tmp" % k)
         summary_path = os.path.join(chunks, "%d.summary.json" % k)
+        sections_tmp = os.path.join(chunks, "%d.sections.csv.tmp" % k)
         if os.path.exists(summary_path):
             os.remove(summary_path)
         cmd = [ehd_sim, "run", scene_path, "--until", repr(ends[k - 1]), "--csv", csv_tmp,
@@ -282,6 +303,8 @@ def _execute_locked(sweep, run, out, folder, ehd_sim, threads, retry_failed):
                "--summary-json", summary_path, "--progress", "60"]
         if k > 1:
             cmd += ["--restart", os.path.join(chunks, "%d.ckpt" % (k - 1))]
+        if sweep.sections_every:
+            cmd += ["--sections", sections_tmp, "--sections-every", str(sweep.sections_every)]
         with open(log_path, "a") as log:
             log.write("=== chunk %d/%d: t = %s -> %s%s, %s\n$ %s\n" % (
                 k, len(ends), format_value(ends[k - 2]) if k > 1 else "0",
@@ -312,6 +335,8 @@ def _execute_locked(sweep, run, out, folder, ehd_sim, threads, retry_failed):
                        "steps": (chunk_summary or {}).get("steps_taken", 0)}, f)
         if os.path.exists(csv_tmp):
             os.replace(csv_tmp, os.path.join(chunks, "%d.csv" % k))
+        if os.path.exists(sections_tmp):
+            os.replace(sections_tmp, os.path.join(chunks, "%d.sections.csv" % k))
         error = chunk_error(chunk_summary, proc.returncode).replace(folder + os.sep, "")
         if error:
             stopped = "error"
@@ -331,6 +356,8 @@ def _finish(sweep, run, folder, chunks, k, rows, stopped, error, resumed, ehd_si
              if re.match(r"^[0-9]+\.json$", n)]
     final = read_chunk_summary(os.path.join(chunks, "%d.summary.json" % k)) if k else None
     _merge_csv(chunks, k, os.path.join(folder, "series.csv"))
+    if sweep.sections_every:
+        _merge_sections(chunks, k, os.path.join(folder, "sections.csv"))
     last_ckpt = os.path.join(chunks, "%d.ckpt" % k)
     if not error and sweep.vtk_final and os.path.exists(last_ckpt):
         # Frame 0 of a one-step restart is the final state itself; the frame after the step
@@ -394,7 +421,7 @@ def check_compatible(sweep, out):
             continue
         same_scene = open(scene_path).read() == run.scene_yaml(sweep)
         try:
-            same_settings = json.load(open(settings_path)) == sweep.run_settings()
+            same_settings = json.load(open(settings_path)) == sweep.run_settings(run)
         except (OSError, ValueError):
             same_settings = False
         if not (same_scene and same_settings):

@@ -150,7 +150,10 @@ def _scalar(where, v):
 
 
 def format_value(v):
-    """The text of a value in run names and tables: shortest round-trip for floats."""
+    """The text of a value in run names and tables: shortest round-trip for floats; "" for
+    None (a key removed from the base scene)."""
+    if v is None:
+        return ""
     if isinstance(v, bool):
         return "true" if v else "false"
     return str(v) if not isinstance(v, float) else repr(v)
@@ -189,6 +192,8 @@ def _flatten(where, mapping, prefix=""):
         key = _key_name(where, prefix + str(k))
         if isinstance(v, dict) and v:
             out.update(_flatten(where, v, key + "."))
+        elif v is None:
+            out[key] = None  # `law: ~`: removes the key from the base scene (ehd_sim's law=)
         else:
             out[key] = v if isinstance(v, dict) else _scalar(_path(where, key), v)
     return out
@@ -196,11 +201,18 @@ def _flatten(where, mapping, prefix=""):
 
 def apply_overrides(scene, overrides):
     """A copy of the scene mapping with dotted-key overrides applied (intermediate mappings are
-    created as needed; a scalar in the way is an error naming the key)."""
+    created as needed; a scalar in the way is an error naming the key). A None value removes
+    the key, as an empty value does in `ehd_sim run --set key=`."""
     out = copy.deepcopy(scene)
     for key, value in overrides.items():
         node = out
         parts = key.split(".")
+        if value is None:
+            for part in parts[:-1]:
+                node = node.get(part) if isinstance(node, dict) else None
+            if isinstance(node, dict):
+                node.pop(parts[-1], None)
+            continue
         for i, part in enumerate(parts[:-1]):
             if part not in node or node[part] is None:
                 node[part] = {}
@@ -229,7 +241,7 @@ def resolve_scene(name, base_dir):
 class Run:
     """One point of the grid."""
 
-    def __init__(self, index, values, sweep, variant_set=None):
+    def __init__(self, index, values, sweep, variant_set=None, t_end=None):
         self.index = index
         self.values = values  # grid key -> value (tags included), in grid order
         self.name = "+".join("%s=%s" % (k[len(TAG_PREFIX):] if k.startswith(TAG_PREFIX) else k,
@@ -239,6 +251,8 @@ class Run:
                           if not k.startswith(TAG_PREFIX) and k != SCENE_KEY})
         overrides.update(variant_set or {})  # the overrides of this run's grid.variants entry
         self.overrides = overrides
+        # Its end time: its grid.variants entry's t_end, else stop.t_end (--t-end replaces both).
+        self.t_end = sweep.t_end if t_end is None else t_end
         if SCENE_KEY in values:
             self.scene_path = sweep.scene_paths[values[SCENE_KEY]]
             base = sweep.base_scenes[values[SCENE_KEY]]
@@ -372,8 +386,10 @@ class Sweep:
         self.variant = []  # the command-line changes, in the default output folder's name
         for key, value in (extra_set or {}).items():
             _key_name("--set", key)
-            self.fixed[key] = _scalar("--set %s" % key, value)
+            # KEY= (None) removes the key from the base scene, as in ehd_sim run --set.
+            self.fixed[key] = None if value is None else _scalar("--set %s" % key, value)
             self.variant.append("%s=%s" % (key, format_value(value)))
+        self.t_end_replaced = t_end is not None  # --t-end: also replaces the variants' t_end
         if t_end is not None:
             stop = data.get("stop")
             if isinstance(stop, dict):
@@ -413,12 +429,15 @@ class Sweep:
 
         self.runs = []
         for index, combo in enumerate(itertools.product(*self.axes)):
-            values, variant_set = {}, {}
+            values, variant_set, run_t_end = {}, {}, None
             for part in combo:
                 part = dict(part)
                 variant_set.update(part.pop("__set__", {}))
+                run_t_end = part.pop("__t_end__", run_t_end)
                 values.update(part)
-            self.runs.append(Run(index, values, self, variant_set))
+            if self.t_end_replaced:
+                run_t_end = None
+            self.runs.append(Run(index, values, self, variant_set, run_t_end))
         for key, wanted in (only or {}).items():
             self._select(key, wanted)
         names = [r.name for r in self.runs]
@@ -517,9 +536,10 @@ class Sweep:
         self.axes.append([{k: z[k][i] for k in z} for i in range(length)])
 
     def _read_variants(self, variants):
-        """grid.variants: a list of named override sets, one axis (grid key `variant`)."""
+        """grid.variants: a list of named override sets, one axis (grid key `variant`); an
+        entry's t_end replaces stop.t_end for its runs."""
         if not isinstance(variants, list):
-            raise SweepError("grid.variants: must be a list of {name, label, set}, got %s" %
+            raise SweepError("grid.variants: must be a list of {name, label, set, t_end}, got %s" %
                              _type_name(variants))
         if not variants:
             raise SweepError("grid.variants: empty list")
@@ -527,7 +547,7 @@ class Sweep:
         axis, keys = [], set()
         for i, v in enumerate(variants):
             where = "grid.variants[%d]" % i
-            _check_keys(where, v, {"name", "label", "set"}, required=("name",))
+            _check_keys(where, v, {"name", "label", "set", "t_end"}, required=("name",))
             name = _string(where + ".name", v["name"])
             if not NAME_VALUE.match(name):
                 raise SweepError("%s.name: '%s' must be letters, digits, '.', '_' and '-' only "
@@ -544,7 +564,11 @@ class Sweep:
                 if key.startswith(TAG_PREFIX) or key == SCENE_KEY:
                     raise SweepError("%s.set.%s: a variant sets scene keys only" % (where, key))
             keys.update(overrides)
-            axis.append({VARIANT_KEY: name, "__set__": overrides})
+            point = {VARIANT_KEY: name, "__set__": overrides}
+            if "t_end" in v:
+                point["__t_end__"] = float(_number(where + ".t_end", v["t_end"], low=0,
+                                                   low_open=True))
+            axis.append(point)
         self.axes.append(axis)
         return keys
 
@@ -557,18 +581,22 @@ class Sweep:
     def _read_record(self, record):
         record = record or {}
         _check_keys("record", record, {"csv_every", "checkpoint_every", "vtk_final",
-                                       "keep_checkpoint", "steady_tolerance"})
+                                       "keep_checkpoint", "steady_tolerance", "sections_every"})
         self.csv_every = _number("record.csv_every", record.get("csv_every", 100), low=1,
                                  integer=True)
         # A chunk is one ehd_sim process; the steady rule is checked at chunk ends, so a sweep
         # that stops at the steady state uses short chunks by default.
-        default_chunk = min(self.t_end, 1.0 if self.steady is not None else 10.0)
+        self.checkpoint_given = "checkpoint_every" in record
         self.checkpoint_every = float(_number(
-            "record.checkpoint_every", record.get("checkpoint_every", default_chunk), low=0,
-            low_open=True))
+            "record.checkpoint_every", record.get("checkpoint_every", self._default_chunk(
+                self.t_end)), low=0, low_open=True))
         self.vtk_final = record.get("vtk_final", False)
         if not isinstance(self.vtk_final, bool):
             raise SweepError("record.vtk_final: must be true or false, got %r" % self.vtk_final)
+        # The membrane's section in the shear plane every this many steps (ehd_sim run
+        # --sections): sections.csv in the run's folder; 0 or absent: none.
+        self.sections_every = _number("record.sections_every", record.get("sections_every", 0),
+                                      low=0, integer=True)
         self.keep_checkpoint = record.get("keep_checkpoint", False)
         if not isinstance(self.keep_checkpoint, bool):
             raise SweepError("record.keep_checkpoint: must be true or false, got %r" %
@@ -578,22 +606,39 @@ class Sweep:
                                               record.get("steady_tolerance", default_tol), low=0,
                                               high=1, low_open=True))
 
-    def chunk_ends(self):
-        """The simulation times at which each chunk (one ehd_sim process) ends and writes a
-        checkpoint: checkpoint_every, 2 checkpoint_every, ..., t_end."""
+    def _default_chunk(self, t_end):
+        return min(t_end, 1.0 if self.steady is not None else 10.0)
+
+    def t_end_of(self, run=None):
+        """The end time of a run (its variant's t_end or stop.t_end; stop.t_end without one)."""
+        return self.t_end if run is None else run.t_end
+
+    def checkpoint_every_of(self, run=None):
+        """A run's chunk length: record.checkpoint_every, else the default of its own t_end."""
+        if self.checkpoint_given:
+            return self.checkpoint_every
+        return self._default_chunk(self.t_end_of(run))
+
+    def chunk_ends(self, run=None):
+        """The simulation times at which each chunk (one ehd_sim process) of a run ends and
+        writes a checkpoint: checkpoint_every, 2 checkpoint_every, ..., its t_end."""
+        t_end, every = self.t_end_of(run), self.checkpoint_every_of(run)
         ends = []
         k = 1
-        while k * self.checkpoint_every < self.t_end * (1 - 1e-12):
-            ends.append(round(k * self.checkpoint_every, 12))
+        while k * every < t_end * (1 - 1e-12):
+            ends.append(round(k * every, 12))
             k += 1
-        ends.append(self.t_end)
+        ends.append(t_end)
         return ends
 
-    def run_settings(self):
+    def run_settings(self, run=None):
         """What, besides the scene, decides a run's result (compared on resume)."""
-        return {"t_end": self.t_end, "steady": self.steady, "csv_every": self.csv_every,
-                "checkpoint_every": self.checkpoint_every,
-                "steady_tolerance": self.steady_tolerance}
+        settings = {"t_end": self.t_end_of(run), "steady": self.steady,
+                    "csv_every": self.csv_every, "checkpoint_every": self.checkpoint_every_of(run),
+                    "steady_tolerance": self.steady_tolerance}
+        if self.sections_every:
+            settings["sections_every"] = self.sections_every
+        return settings
 
 
 def _load_scene(path):
@@ -608,7 +653,7 @@ def _load_scene(path):
 
 def _load_table(name, base_dir):
     """The campaign table of `table: FILE.py` (relative to the sweep file): a Python file
-    defining table(runs) -> (header, rows[, notes]) (docs/campaigns.md)."""
+    defining table(runs) -> (header, rows[, notes[, after]]) (docs/campaigns.md)."""
     import importlib.util
     path = name if os.path.isabs(name) else os.path.join(base_dir, name)
     if not name.endswith(".py") or not os.path.isfile(path):
