@@ -42,7 +42,6 @@ PATTERN = re.compile("|".join("(?:%s)" % p for p in PHRASES))
 
 # Campaigns still on their hand loop (issue #30 item 5, what is left: docs/campaigns.md).
 NOT_YET_CONVERTED = {
-    "validate_3d",
     "validate_ehd_common.py",
     "validate_ehd_cost.py",
     "validate_ehd_speed.py",
