@@ -2,7 +2,8 @@
 """The validation campaigns (scripts/campaigns/*.yaml, docs/campaigns.md):
 
 1. every campaign spec expands and passes `scripts/sweep FILE --check` (ehd_sim runs one step of
-   its first scene), and long_runs lists every shipped scene;
+   its first scene), and long_runs lists every shipped scene; validate_3d's long runs have their
+   own t_end (and chunks), which --t-end replaces, and its drops have no law (`law: ~`);
 2. broken campaign specs are refused with exit status 2 and a message naming the key;
 3. validate_3d_substeps runs end to end on a tiny override (N = 16, 162 vertices, t = 0.01:
    7 runs of a few steps) and its collected table has the old script's columns and rows, the
@@ -57,6 +58,11 @@ BROKEN = [  # (what, spec text, text the message must contain)
      "stop: {t_end: 1}\ntable: nothing.py\n", "table: 'nothing.py' is not a Python file"),
     ("jobs not an integer", "scene: shear_field\ngrid:\n  product:\n    N: [32]\n"
      "stop: {t_end: 1}\njobs: 1.5\n", "jobs: must be an integer"),
+    ("variant t_end not positive", "scene: shear_field\ngrid:\n  variants:\n"
+     "    - {name: a, t_end: 0}\nstop: {t_end: 1}\n", "grid.variants[0].t_end: 0 is out of range"),
+    ("sections_every not an integer", "scene: shear_field\ngrid:\n  product:\n    N: [32]\n"
+     "stop: {t_end: 1}\nrecord: {sections_every: 9.5}\n",
+     "record.sections_every: must be an integer"),
 ]
 
 
@@ -80,6 +86,17 @@ def main():
     listed = sorted(r.values["scene"] for r in Sweep(os.path.join(CAMPAIGNS, "long_runs.yaml")).runs)
     check(listed == shipped, "long_runs.yaml lists every shipped scene (missing: %s)" % (
         ", ".join(sorted(set(shipped) - set(listed))) or "none"))
+    v3d = Sweep(os.path.join(CAMPAIGNS, "validate_3d.yaml"))
+    longs = [r for r in v3d.runs if r.values["tag.variant"].startswith("long-")]
+    check(len(longs) == 4 and all(r.t_end == 15 for r in longs) and
+          v3d.chunk_ends(longs[0]) == [10, 15] and v3d.chunk_ends(v3d.runs[0]) == [3] and
+          v3d.run_settings(longs[0])["t_end"] == 15,
+          "validate_3d: the long runs to t = 15 in chunks of 10, the others to 3")
+    short = Sweep(os.path.join(CAMPAIGNS, "validate_3d.yaml"), t_end=0.2)
+    check(all(r.t_end == 0.2 for r in short.runs), "--t-end replaces the variants' t_end")
+    drops = [r for r in v3d.runs if r.overrides.get("membrane") == "drop"]
+    check(drops and all("law" not in r.scene and "law" in r.overrides for r in drops),
+          "validate_3d: a drop's scene has no law (law: ~ removes the base scene's)")
 
     with tempfile.TemporaryDirectory(prefix="campaigns_test_") as tmp:
         for what, text, expected in BROKEN:
