@@ -99,8 +99,11 @@ struct SceneNumerics {
   // the enclosed volume is the initial one again (geometry/triangle_mesh.h,
   // RestoreEnclosedVolume): the immersed boundary leaks slowly; 0 = off.
   int volume_correction_every = 0;
+  // The immersed boundary's discrete delta: "cosine" (song2019 eq. (103)) or "roma3" (Roma,
+  // Peskin & Berger 1999; ib/delta_kernel.h).
+  std::string ib_kernel = "cosine";
   // The immersed boundary's points retracted inward along the normals by this many cells
-  // (coupling/retracted_points.h; 0.5 calibrated in docs/validation_3d.md); 0 = the points
+  // (coupling/retracted_points.h; calibrated per kernel in docs/validation_3d.md); 0 = the points
   // themselves (song2019).
   double ib_retraction = 0.5;
   // With a retraction: 1 = the membrane moves with the velocity extrapolated from the retracted
