@@ -28,23 +28,27 @@ double DeltaKernelValue(DeltaKernel kernel, double r_over_h) {
 }
 
 double Roma3DeltaTransform(double xi) {
-  // roma3: 2 int_0^{3/2} phi(r) cos(xi r) dr by 16-point Gauss-Legendre on [0, 1/2] and
-  // [1/2, 3/2], where phi is smooth (the square roots vanish only outside, at r = 0.577 and
-  // 1.577); exact to ~1e-14 for the xi <= 2 pi the stability estimate samples.
-  static const double kNodes[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
-                                   0.6178762444026438, 0.7554044083550030, 0.8656312023878318,
-                                   0.9445750230732326, 0.9894009349916499};
-  static const double kWeights[8] = {0.1894506104550685, 0.1826034150449236, 0.1691565193950025,
-                                     0.1495959888165767, 0.1246289712555339, 0.0951585116824928,
-                                     0.0622535239386479, 0.0271524594117541};
+  // 2 int_0^{3/2} phi(r) cos(xi r) dr by 16-point Gauss-Legendre on four quarters of each of
+  // [0, 1/2] and [1/2, 3/2], where phi is analytic. Its square roots branch just outside them
+  // (at r = 0.577 and 0.423), which holds one panel per piece to 3e-11; four give 1e-15.
+  static const double kNodes[8] = {0.095012509837637454, 0.28160355077925892, 0.45801677765722737,
+                                   0.61787624440264377,  0.755404408355003,   0.86563120238783176,
+                                   0.9445750230732326,   0.98940093499164994};
+  static const double kWeights[8] = {
+      0.18945061045506859, 0.18260341504492361,  0.16915651939500262,  0.14959598881657676,
+      0.12462897125553403, 0.095158511682492591, 0.062253523938647706, 0.027152459411754037};
   double sum = 0.0;
   const double pieces[2][2] = {{0.0, 0.5}, {0.5, 1.5}};
+  constexpr int kPanels = 4;
   for (const auto& p : pieces) {
-    const double mid = 0.5 * (p[0] + p[1]), half = 0.5 * (p[1] - p[0]);
-    for (int i = 0; i < 8; ++i) {
-      for (const double sign : {-1.0, 1.0}) {
-        const double r = mid + sign * half * kNodes[i];
-        sum += half * kWeights[i] * DeltaKernelValue(DeltaKernel::kRoma3, r) * std::cos(xi * r);
+    const double half = 0.5 * (p[1] - p[0]) / kPanels;
+    for (int panel = 0; panel < kPanels; ++panel) {
+      const double mid = p[0] + (2 * panel + 1) * half;
+      for (int i = 0; i < 8; ++i) {
+        for (const double sign : {-1.0, 1.0}) {
+          const double r = mid + sign * half * kNodes[i];
+          sum += half * kWeights[i] * DeltaKernelValue(DeltaKernel::kRoma3, r) * std::cos(xi * r);
+        }
       }
     }
   }
