@@ -178,7 +178,8 @@ class CoupledStepOf : public CoupledStep {
     grid_ = fluid_->lattice().grid();
     std::array<bool, D> periodic{};
     for (int a = 0; a < D; ++a) periodic[a] = a != 1 && scene.has_shear();  // walls at y = +-L
-    ib_ = std::make_unique<ImmersedBoundaryTransfer<D>>(grid_, periodic);
+    ib_ = std::make_unique<ImmersedBoundaryTransfer<D>>(grid_, periodic,
+                                                        ParseDeltaKernel(scene.numerics.ib_kernel));
     membrane_ = std::make_unique<MembraneStage<D>>(scene, units, data_);
     if (scene.electric_field) {
       electric_ = std::make_unique<ElectricStage<D>>(scene, units, grid_, data_);

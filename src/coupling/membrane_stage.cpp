@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <sstream>
 
+#include "ehd_capsule/ib/delta_kernel.h"
 #include "ehd_capsule/membrane/helfrich_bending.h"
 #include "ehd_capsule/membrane/membrane_model.h"
 #include "ehd_capsule/membrane/membrane_stability.h"
@@ -22,6 +23,15 @@ namespace {
 double StableLatticeStep(const Scene& scene, const MembraneStabilityLimits& limits) {
   return limits.min_dt() *
          (scene.numerics.integrator == MarkerTimeScheme::kForwardEuler ? 2.0 : 1.0);
+}
+
+// The Fourier transform of the immersed boundary's kernel (numerics.ib_kernel), which sets how
+// strongly the fluid damps a membrane mode (membrane_stability.h).
+KernelTransform KernelTransformOf(const Scene& scene) {
+  if (ParseDeltaKernel(scene.numerics.ib_kernel) == DeltaKernel::kRoma3) {
+    return Roma3DeltaTransform;
+  }
+  return CosineDeltaTransform;
 }
 
 // The key that sets the tension scale T: Ca with shear, Oh without.
@@ -71,7 +81,8 @@ struct MembraneMechanics<2> {
     }
     const ClosedCurve reference(body.initial);
     model_ = std::make_unique<MembraneModel>(mp, reference);
-    const MembraneStabilityLimits limits = model_->Stability(reference, units.viscosity);
+    const MembraneStabilityLimits limits =
+        model_->Stability(reference, units.viscosity, 1.0, KernelTransformOf(scene));
     const double dt_stable = StableLatticeStep(scene, limits);
     if (dt_stable < 1.0) {
       const bool bending = limits.bending_dt == limits.min_dt();
@@ -188,8 +199,8 @@ struct MembraneMechanics<3> {
     }
     if (scene.membrane == MembraneKind::kDrop) {
       tension_ = units.tension;
-      const MembraneStabilityLimits limits =
-          EstimateMembraneStability(tension_, 0.0, 0.0, 0.0, units.viscosity, 1.0, q.min_edge);
+      const MembraneStabilityLimits limits = EstimateMembraneStability(
+          tension_, 0.0, 0.0, 0.0, units.viscosity, 1.0, q.min_edge, KernelTransformOf(scene));
       const double dt_stable = StableLatticeStep(scene, limits);
       if (dt_stable < 1.0) {
         throw SceneError("scene " + scene.name +
@@ -219,7 +230,7 @@ struct MembraneMechanics<3> {
         (scene.law == SurfaceLawKind::kSkalak ? 2.0 + 2.0 * scene.area_dilation : 4.0);
     const MembraneStabilityLimits limits =
         EstimateMembraneStability(0.0, stiffness, bending_ ? units.bending_modulus : 0.0, 0.0,
-                                  units.viscosity, 1.0, q.min_edge);
+                                  units.viscosity, 1.0, q.min_edge, KernelTransformOf(scene));
     const double dt_stable = StableLatticeStep(scene, limits);
     if (dt_stable < 1.0) {
       const bool bending = limits.bending_dt == limits.min_dt();

@@ -19,12 +19,15 @@ std::string SpreadStage<D>::Describe() const {
   for (const auto& source : data_.bodies.front().sources) {
     sources += (sources.empty() ? "" : " + ") + source->name;
   }
+  const std::string kernel = ib_.kernel() == DeltaKernel::kRoma3
+                                 ? "roma3 delta (Roma, Peskin & Berger 1999)"
+                                 : "cosine delta (eq. 103)";
   if constexpr (D == 2) {
-    return "cosine delta (eq. 103), spread the sum of the force sources (" + sources + ") dl" +
+    return kernel + ", spread the sum of the force sources (" + sources + ") dl" +
            (scene_.has_shear() ? ", periodic in x" : "") + Retraction();
   } else {
-    return "cosine delta (eq. 103) as a product in 3D, spread the sum of the force sources (" +
-           sources + ") per vertex" + Retraction();
+    return kernel + " as a product in 3D, spread the sum of the force sources (" + sources +
+           ") per vertex" + Retraction();
   }
 }
 

@@ -1,11 +1,11 @@
-// song2019 eqs. (104) and (106) with the cosine kernel (103) as a tensor product in 2 or 3
-// dimensions; see immersed_boundary.h.
+// song2019 eqs. (104) and (106) with the cosine kernel (103), or the roma3 kernel, as a tensor
+// product in 2 or 3 dimensions; see immersed_boundary.h.
 #include "ehd_capsule/ib/immersed_boundary.h"
 
 #include <stdexcept>
 #include <string>
 
-#include "ehd_capsule/ib/cosine_delta.h"
+#include "ehd_capsule/ib/delta_kernel.h"
 
 namespace ehd {
 namespace {
@@ -19,12 +19,23 @@ void CheckField(const Grid<D>& grid, const std::vector<double>& f, int component
   }
 }
 
+// The point's stencil along one axis for the kernel (W = 4: cosine, W = 3: roma3).
+template <int W>
+DeltaStencil AxisStencil(double xi) {
+  if constexpr (W == 4) {
+    return CosineDeltaStencil(xi);
+  } else {
+    return Roma3DeltaStencil(xi);
+  }
+}
+
 }  // namespace
 
 template <int D>
 ImmersedBoundaryTransfer<D>::ImmersedBoundaryTransfer(const Grid<D>& grid,
-                                                      const std::array<bool, D>& periodic)
-    : grid_(grid), periodic_(periodic) {
+                                                      const std::array<bool, D>& periodic,
+                                                      DeltaKernel kernel)
+    : grid_(grid), periodic_(periodic), kernel_(kernel) {
   bool ok = grid.h > 0.0;
   std::string extents;
   for (int a = 0; a < D; ++a) {
@@ -41,6 +52,17 @@ template <int D>
 void ImmersedBoundaryTransfer<D>::Interpolate(const std::array<const std::vector<double>*, D>& u,
                                               const Points& X, Points& U) const {
   for (int d = 0; d < D; ++d) CheckField(grid_, *u[d], d);
+  if (kernel_ == DeltaKernel::kRoma3) {
+    InterpolateWith<3>(u, X, U);
+  } else {
+    InterpolateWith<4>(u, X, U);
+  }
+}
+
+template <int D>
+template <int W>
+void ImmersedBoundaryTransfer<D>::InterpolateWith(
+    const std::array<const std::vector<double>*, D>& u, const Points& X, Points& U) const {
   const Eigen::Index m = X.cols();
   if (U.cols() != m) U.resize(D, m);
   const double inv_h = 1.0 / grid_.h;
@@ -52,12 +74,12 @@ void ImmersedBoundaryTransfer<D>::Interpolate(const std::array<const std::vector
     // Node i sits at origin + (i + 1/2) h, so the fractional node coordinate is (x - o)/h - 1/2.
     DeltaStencil s[D];
     for (int a = 0; a < D; ++a) {
-      s[a] = CosineDeltaStencil((X(a, c) - grid_.origin(a)) * inv_h - 0.5);
+      s[a] = AxisStencil<W>((X(a, c) - grid_.origin(a)) * inv_h - 0.5);
     }
-    int ix[4];
-    for (int a = 0; a < 4; ++a) ix[a] = WrapIndex(s[0].first + a, nx, periodic_[0]);
+    int ix[W];
+    for (int a = 0; a < W; ++a) ix[a] = WrapIndex(s[0].first + a, nx, periodic_[0]);
     double total[D] = {};
-    for (int zc = 0; zc < (D == 3 ? 4 : 1); ++zc) {
+    for (int zc = 0; zc < (D == 3 ? W : 1); ++zc) {
       std::size_t plane = 0;
       if constexpr (D == 3) {
         const int k = WrapIndex(s[D - 1].first + zc, nz, periodic_[D - 1]);
@@ -66,12 +88,12 @@ void ImmersedBoundaryTransfer<D>::Interpolate(const std::array<const std::vector
                 static_cast<std::size_t>(nx);
       }
       double in_plane[D] = {};
-      for (int b = 0; b < 4; ++b) {
+      for (int b = 0; b < W; ++b) {
         const int j = WrapIndex(s[1].first + b, ny, periodic_[1]);
         if (j < 0) continue;
         const std::size_t row = plane + static_cast<std::size_t>(j) * static_cast<std::size_t>(nx);
         double in_row[D] = {};
-        for (int a = 0; a < 4; ++a) {
+        for (int a = 0; a < W; ++a) {
           if (ix[a] < 0) continue;
           for (int d = 0; d < D; ++d) in_row[d] += s[0].weight[a] * up[d][row + ix[a]];
         }
@@ -95,6 +117,17 @@ void ImmersedBoundaryTransfer<D>::Spread(const Points& X, const Points& F,
     throw std::invalid_argument("ImmersedBoundary::Spread: " + std::to_string(F.cols()) +
                                 " forces for " + std::to_string(X.cols()) + " points");
   }
+  if (kernel_ == DeltaKernel::kRoma3) {
+    SpreadWith<3>(X, F, f);
+  } else {
+    SpreadWith<4>(X, F, f);
+  }
+}
+
+template <int D>
+template <int W>
+void ImmersedBoundaryTransfer<D>::SpreadWith(const Points& X, const Points& F,
+                                             const std::array<std::vector<double>*, D>& f) const {
   const double inv_h = 1.0 / grid_.h;
   double inv_volume = inv_h * inv_h;  // 1 / h^D
   if constexpr (D == 3) inv_volume *= inv_h;
@@ -105,13 +138,13 @@ void ImmersedBoundaryTransfer<D>::Spread(const Points& X, const Points& F,
   for (Eigen::Index c = 0; c < X.cols(); ++c) {
     DeltaStencil s[D];
     for (int a = 0; a < D; ++a) {
-      s[a] = CosineDeltaStencil((X(a, c) - grid_.origin(a)) * inv_h - 0.5);
+      s[a] = AxisStencil<W>((X(a, c) - grid_.origin(a)) * inv_h - 0.5);
     }
-    int ix[4];
-    for (int a = 0; a < 4; ++a) ix[a] = WrapIndex(s[0].first + a, nx, periodic_[0]);
+    int ix[W];
+    for (int a = 0; a < W; ++a) ix[a] = WrapIndex(s[0].first + a, nx, periodic_[0]);
     double g[D];
     for (int d = 0; d < D; ++d) g[d] = F(d, c) * inv_volume;
-    for (int zc = 0; zc < (D == 3 ? 4 : 1); ++zc) {
+    for (int zc = 0; zc < (D == 3 ? W : 1); ++zc) {
       std::size_t plane = 0;
       double wz = 1.0;
       if constexpr (D == 3) {
@@ -121,13 +154,13 @@ void ImmersedBoundaryTransfer<D>::Spread(const Points& X, const Points& F,
                 static_cast<std::size_t>(nx);
         wz = s[D - 1].weight[zc];
       }
-      for (int b = 0; b < 4; ++b) {
+      for (int b = 0; b < W; ++b) {
         const int j = WrapIndex(s[1].first + b, ny, periodic_[1]);
         if (j < 0) continue;
         const std::size_t row = plane + static_cast<std::size_t>(j) * static_cast<std::size_t>(nx);
         // 2D: w = phi_x phi_y exactly as before; 3D: phi_x (phi_y phi_z).
         const double wyz = D == 3 ? s[1].weight[b] * wz : s[1].weight[b];
-        for (int a = 0; a < 4; ++a) {
+        for (int a = 0; a < W; ++a) {
           if (ix[a] < 0) continue;
           const double w = s[0].weight[a] * wyz;
           for (int d = 0; d < D; ++d) fp[d][row + ix[a]] += w * g[d];

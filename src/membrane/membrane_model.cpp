@@ -123,7 +123,8 @@ std::string MembraneModel::Describe() const {
 }
 
 MembraneStabilityLimits MembraneModel::Stability(const ClosedCurve& curve, double fluid_viscosity,
-                                                 double grid_spacing) const {
+                                                 double grid_spacing,
+                                                 const KernelTransform& kernel_transform) const {
   double min_spacing = curve.SegmentArcLength(0);
   double max_stretch = 1.0;
   for (int k = 0; k < curve.size(); ++k) {
@@ -136,7 +137,7 @@ MembraneStabilityLimits MembraneModel::Stability(const ClosedCurve& curve, doubl
   const double elastic = params_.shear_modulus * max_stretch;
   return EstimateMembraneStability(params_.tension, elastic, params_.bending_modulus,
                                    params_.membrane_viscosity, fluid_viscosity, grid_spacing,
-                                   min_spacing);
+                                   min_spacing, kernel_transform);
 }
 
 double MembraneModel::StableTimeStep(const ClosedCurve& curve, double fluid_viscosity,

@@ -25,7 +25,8 @@ double CosineDeltaTransform(double xi) {
 MembraneStabilityLimits EstimateMembraneStability(double gamma, double elastic_stiffness,
                                                   double bending_modulus, double membrane_viscosity,
                                                   double fluid_viscosity, double grid_spacing,
-                                                  double min_marker_spacing) {
+                                                  double min_marker_spacing,
+                                                  const KernelTransform& kernel_transform) {
   if (!(fluid_viscosity > 0.0) || !(grid_spacing > 0.0) || !(min_marker_spacing > 0.0)) {
     throw std::invalid_argument(
         "EstimateMembraneStability: fluid_viscosity, grid_spacing and marker spacing must be > 0 "
@@ -40,7 +41,7 @@ MembraneStabilityLimits EstimateMembraneStability(double gamma, double elastic_s
   const int samples = 2000;
   for (int i = 1; i <= samples; ++i) {
     const double k = k_max * i / samples;
-    const double p2 = std::pow(CosineDeltaTransform(k * grid_spacing), 2);
+    const double p2 = std::pow(kernel_transform(k * grid_spacing), 2);
     g1 = std::max(g1, k * p2);
     g3 = std::max(g3, k * k * k * p2);
   }

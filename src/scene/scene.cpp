@@ -738,12 +738,22 @@ SceneModule NumericsModule(const CoreConditions& c) {
                  "numerics.relax_mesh_every steps)")
            .Otherwise(0.0)
            .Store(StoreNumerics(&SceneNumerics::redistribute_markers)),
+       ChoiceKey(
+           "numerics.ib_kernel", {"cosine", "roma3"},
+           "the immersed boundary's discrete delta: roma3 (Roma, Peskin & Berger 1999, 3 nodes "
+           "per axis) or cosine (song2019 eq. (103), 4 nodes; ib/delta_kernel.h, "
+           "docs/validation_3d.md \"The kernel\")")
+           .Default("roma3")
+           .Store([](Scene& s, const SceneValue& v) { s.numerics.ib_kernel = v.text; }),
        NumberKey("numerics.ib_retraction", Closed(0.0, 1.5), "cells",
                  "spread the force and interpolate the velocity at the points moved inward along "
-                 "their normals by this distance (0.5: calibrated on a spherical capsule's exact "
-                 "small-Ca deformation and rotation; coupling/retracted_points.h, "
+                 "their normals by this distance (calibrated per kernel on a spherical capsule's "
+                 "exact small-Ca deformation and rotation; coupling/retracted_points.h, "
                  "docs/validation_3d.md); 0 = at the points (song2019)")
-           .Default(0.5)
+           .DefaultFrom("0.5 (cosine), 0.37 (roma3)",
+                        [](const Scene& s) {
+                          return SceneValue{s.numerics.ib_kernel == "roma3" ? 0.37 : 0.5, {}};
+                        })
            .Store(StoreNumerics(&SceneNumerics::ib_retraction)),
        IntegerKey("numerics.ib_extrapolate_velocity", 0, 1, "1",
                   "with numerics.ib_retraction > 0: 1 = move the membrane with the velocity "

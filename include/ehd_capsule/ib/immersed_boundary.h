@@ -1,7 +1,8 @@
 // Immersed boundary transfer between the Eulerian grid and the Lagrangian points, in 2 and 3
 // dimensions.
 //
-// song2019 sec. 3.2, eqs. (102), (104), (106), with the cosine kernel of eq. (103), in D
+// song2019 sec. 3.2, eqs. (102), (104), (106), with the cosine kernel of eq. (103) or the roma3
+// kernel (ib/delta_kernel.h, numerics.ib_kernel), in D
 // dimensions the tensor product of the 1D kernel, delta_h(x) = prod_a phi(x_a / h) / h^D:
 //   interpolation  U(X_c) = sum_j delta_h(X_c - x_j) u(x_j) h^D                       (104)
 //   spreading      p(x_j) += sum_c delta_h(X_c - x_j) P(X_c)                            (106)
@@ -26,6 +27,7 @@
 #include <vector>
 
 #include "ehd_capsule/geometry/grid.h"
+#include "ehd_capsule/ib/delta_kernel.h"
 #include "ehd_capsule/ib/marker_update.h"
 
 namespace ehd {
@@ -34,11 +36,14 @@ template <int D>
 class ImmersedBoundaryTransfer {
  public:
   using Points = Eigen::Matrix<double, D, Eigen::Dynamic>;
-  // Throws std::invalid_argument unless every extent >= 4 and h > 0.
-  ImmersedBoundaryTransfer(const Grid<D>& grid, const std::array<bool, D>& periodic);
+  // Throws std::invalid_argument unless every extent >= 4 and h > 0. kernel: the discrete delta
+  // (ib/delta_kernel.h; the cosine kernel of song2019 by default).
+  ImmersedBoundaryTransfer(const Grid<D>& grid, const std::array<bool, D>& periodic,
+                           DeltaKernel kernel = DeltaKernel::kCosine4);
 
   const Grid<D>& grid() const { return grid_; }
   bool periodic(int axis) const { return periodic_[axis]; }
+  DeltaKernel kernel() const { return kernel_; }
 
   // U(:, c) = sum_j delta u_j h^D (eq. (104)); u[a] is the a-th velocity component, grid.size()
   // entries each. U is resized to D x M (no allocation when it already has that size).
@@ -59,6 +64,16 @@ class ImmersedBoundaryTransfer {
   }
   Grid<D> grid_;
   std::array<bool, D> periodic_;
+  DeltaKernel kernel_ = DeltaKernel::kCosine4;
+
+ private:
+  // The loops for a kernel of W nodes per axis.
+  template <int W>
+  void InterpolateWith(const std::array<const std::vector<double>*, D>& u, const Points& X,
+                       Points& U) const;
+  template <int W>
+  void SpreadWith(const Points& X, const Points& F,
+                  const std::array<std::vector<double>*, D>& f) const;
 };
 
 extern template class ImmersedBoundaryTransfer<2>;

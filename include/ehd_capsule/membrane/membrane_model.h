@@ -52,8 +52,9 @@ class MembraneModel {
   // h (1 in lattice units). Covers gamma, E_s (plus the current elastic prestress) and E_B.
   double StableTimeStep(const ClosedCurve& curve, double fluid_viscosity,
                         double grid_spacing = 1.0) const;
-  MembraneStabilityLimits Stability(const ClosedCurve& curve, double fluid_viscosity,
-                                    double grid_spacing = 1.0) const;
+  MembraneStabilityLimits Stability(
+      const ClosedCurve& curve, double fluid_viscosity, double grid_spacing = 1.0,
+      const KernelTransform& kernel_transform = CosineDeltaTransform) const;
 
   // Total tau at each marker from the last ComputeForce (for output).
   const std::vector<double>& tension() const { return tau_marker_; }
