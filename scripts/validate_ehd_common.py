@@ -39,9 +39,9 @@ class Run:
     def command(self, args):
         cmd = [args.ehd_sim, "run", self.scene, "--quiet", "--csv", self.csv_path(args),
                "--csv-every", str(self.csv_every), "--set", "numerics.threads=1",
-               # The tables were made with the immersed boundary at the points (before the
-               # retraction of issue #42 became the default).
-               "--set", "numerics.ib_retraction=0"]
+               # The tables were made with the immersed boundary at the points with the cosine
+               # kernel (before the retraction and kernel of issue #42 became the default).
+               "--set", "numerics.ib_kernel=cosine", "--set", "numerics.ib_retraction=0"]
         for s in self.sets:
             cmd += ["--set", s]
         cmd += self.stop

@@ -26,7 +26,8 @@ def converge(args, scene, grids, until, sets=()):
     log = os.path.join(args.work, "converge_%s_%s.log" % (scene, grids.replace(",", "-")))
     if args.fresh or not os.path.exists(log) or "differences to the finest" not in open(log).read():
         cmd = [args.ehd_sim, "converge", scene, "--grids", grids, "--until", str(until),
-               "--set", "numerics.threads=1", "--set", "numerics.ib_retraction=0"]
+               "--set", "numerics.threads=1", "--set", "numerics.ib_kernel=cosine",
+               "--set", "numerics.ib_retraction=0"]
         for s in sets:
             cmd += ["--set", s]
         start = time.time()

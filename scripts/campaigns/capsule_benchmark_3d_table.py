@@ -35,8 +35,9 @@ def table(runs):
         ca = run.overrides["Ca"] / 3.0
         radius = run.overrides["N"] / (2.0 * run.overrides["geometry.half_width"])
         retraction = run.overrides["numerics.ib_retraction"]
-        cells = ["retracted %g h" % retraction if retraction > 0 else "at the points (song2019)",
-                 "%g" % ca, "%g" % radius]
+        kernel = run.overrides.get("numerics.ib_kernel", "roma3")
+        cells = ["%s, retracted %g h" % (kernel, retraction) if retraction > 0
+                 else "%s, at the points (song2019)" % kernel, "%g" % ca, "%g" % radius]
         if run.status != "ok":
             body.append(cells + ["%s: %s" % (run.status, run.error) if run.error
                                  else run.status] + [""] * (3 * len(TIMES) + 1))
