@@ -743,7 +743,10 @@ SceneModule NumericsModule(const CoreConditions& c) {
            "the immersed boundary's discrete delta: roma3 (Roma, Peskin & Berger 1999, 3 nodes "
            "per axis) or cosine (song2019 eq. (103), 4 nodes; ib/delta_kernel.h, "
            "docs/validation_3d.md \"The kernel\")")
-           .Default("roma3")
+           .DefaultFrom("roma3 in 3D, cosine in 2D",
+                        [](const Scene& s) {
+                          return SceneValue{0, s.dimension == 3 ? "roma3" : "cosine"};
+                        })
            .Store([](Scene& s, const SceneValue& v) { s.numerics.ib_kernel = v.text; }),
        NumberKey("numerics.ib_retraction", Closed(0.0, 1.5), "cells",
                  "spread the force and interpolate the velocity at the points moved inward along "

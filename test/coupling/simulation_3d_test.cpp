@@ -335,21 +335,23 @@ TEST(Simulation3D, ReinterpolatedTractionFollowsTheSolvedOne) {
 // stable, which then runs.
 TEST(Simulation3D, BendingStepLimitIsNamedAndRespected) {
   {
-    // The 3D default integrator (Adams-Bashforth 2) has half forward Euler's limit.
-    Simulation sim(TinySphere().Build({"E_b=2.5"}));  // estimated stable dt 1.24
+    // The 3D default integrator (Adams-Bashforth 2) has half forward Euler's limit. With the
+    // roma3 kernel (the default) the limit is 2.4 times stricter than with the cosine one: it
+    // damps the mesh-scale modes less (its transform at k h = pi is larger).
+    Simulation sim(TinySphere().Build({"E_b=1"}));  // estimated stable dt 1.31
     for (int i = 0; i < 1000; ++i) sim.Step();
     EXPECT_LT(sim.state().dxy, 0.05);  // stiff in bending: barely deformed
     EXPECT_LT(std::abs(sim.state().area_drift), 1e-2);
   }
   try {
-    Simulation sim(TinySphere().Build({"E_b=5"}));
-    ADD_FAILURE() << "E_b = 5 accepted at membrane_substeps 1";
+    Simulation sim(TinySphere().Build({"E_b=2.5"}));  // estimated stable dt 0.524
+    ADD_FAILURE() << "E_b = 2.5 accepted at membrane_substeps 1";
   } catch (const SceneError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("bending (E_b)"), std::string::npos) << what;
     EXPECT_NE(what.find("numerics.membrane_substeps >= 2"), std::string::npos) << what;
   }
-  Simulation sim(TinySphere().Build({"E_b=5", "numerics.membrane_substeps=2"}));
+  Simulation sim(TinySphere().Build({"E_b=2.5", "numerics.membrane_substeps=2"}));
   for (int i = 0; i < 1000; ++i) sim.Step();
   EXPECT_TRUE(sim.state().markers.allFinite());
   EXPECT_LT(sim.state().dxy, 0.05);

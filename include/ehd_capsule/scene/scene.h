@@ -99,13 +99,13 @@ struct SceneNumerics {
   // the enclosed volume is the initial one again (geometry/triangle_mesh.h,
   // RestoreEnclosedVolume): the immersed boundary leaks slowly; 0 = off.
   int volume_correction_every = 0;
-  // The immersed boundary's discrete delta: "roma3" (Roma, Peskin & Berger 1999; the default since
-  // issue #42) or "cosine" (song2019 eq. (103)); ib/delta_kernel.h.
-  std::string ib_kernel = "roma3";
+  // The immersed boundary's discrete delta: "cosine" (song2019 eq. (103); the 2D default) or
+  // "roma3" (Roma, Peskin & Berger 1999; the 3D default since issue #42); ib/delta_kernel.h.
+  std::string ib_kernel = "cosine";
   // The immersed boundary's points retracted inward along the normals by this many cells
   // (coupling/retracted_points.h; calibrated per kernel in docs/validation_3d.md); 0 = the points
   // themselves (song2019).
-  double ib_retraction = 0.37;
+  double ib_retraction = 0.5;
   // With a retraction: 1 = the membrane moves with the velocity extrapolated from the retracted
   // points to its own (the kinematic condition), 0 = with the velocity at the retracted points.
   int ib_extrapolate_velocity = 1;
