@@ -6,9 +6,11 @@
 // (104), (106) at X_r). The cosine kernel's 4 h support makes the flow go round a body larger
 // than the marker surface (a + 0.7-0.9 h by the stresslet of a nearly rigid sphere, and a
 // small-Ca deformation 12-25 % above (25/12) Ca); retracting the points removes most of it
-// (Breugem, J. Comput. Phys. 231 (2012) 4469, for direct forcing). delta = 0.5 h is calibrated
-// on the exact small-Ca deformation and rotation of a spherical capsule; the stresslet would
-// need 0.8-1.0 h, which no single adjoint delta reconciles (docs/validation_3d.md).
+// (Breugem, J. Comput. Phys. 231 (2012) 4469, for direct forcing). delta is calibrated per
+// kernel on the exact small-Ca deformation and rotation of a spherical capsule: 0.5 h for the
+// cosine kernel (the 2D default), 0.37 h for roma3 (the 3D default, docs/validation_3d.md "The
+// kernel"); with cosine the stresslet would need 0.8-1.0 h, which no single adjoint delta
+// reconciles (docs/validation_3d.md).
 //
 // Departure from Breugem (rigid particles, whose velocity is prescribed): a membrane moves with
 // the fluid at its own position, not at X_r (the kinematic condition). The velocity at X_r is
