@@ -47,6 +47,10 @@ if(EHD_BUILD_TESTS AND CATKIN_ENABLE_TESTING AND EHD_ROS_SOURCES)
   # One launch that takes scene:=, thin includes of it per scene, doc= on every argument.
   add_test(NAME ros_launch_files COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/launch_files_test.py)
   set_tests_properties(ros_launch_files PROPERTIES TIMEOUT 300 LABELS "ros;integration")
+  # scripts/plot_bag's choices per dimension and scene (t unit, title, panels, section), on bags
+  # the test writes itself (rosbag and the package's messages; no master).
+  add_test(NAME ros_plot_bag COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/plot_bag_test.py)
+  set_tests_properties(ros_plot_bag PROPERTIES TIMEOUT 300 LABELS "ros;integration")
   # Unit tests of the node's parts that need no ROS master (GoogleTest, test/ros/*_test.cpp).
   file(GLOB EHD_ROS_UNIT_TESTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/*_test.cpp)
   foreach(test_source ${EHD_ROS_UNIT_TESTS})

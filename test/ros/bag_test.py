@@ -53,6 +53,16 @@ class BagTest(unittest.TestCase):
         self.assertEqual(len(written), 2, run.stdout)
         for png in written:
             self.assertGreater(os.path.getsize(png), 1000, png)
+        # Its choices for this 2D shear-and-field bag (issue #44 item 7).
+        import json
+        run = subprocess.run(["/usr/bin/python3", script, path, "--describe"],
+                             capture_output=True, text=True, timeout=120)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        plan = json.loads(run.stdout)
+        self.assertEqual(plan["time_label"], "t k")
+        self.assertIn("shear_field", plan["title"])
+        self.assertIn("Ca 0.04, Ca_E 0.3", plan["title"])
+        self.assertEqual([p["measure"] for p in plan["panels"]], ["dxy", "theta", "live"])
         os.remove(path)
         self.assertEqual(len(states), steps // every + 1)
         self.assertEqual([m.step for m in states], list(range(0, steps + 1, every)))

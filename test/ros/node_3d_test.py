@@ -126,6 +126,21 @@ class Node3dTest(unittest.TestCase):
         self.assertTrue(fields, "no field layer published")
         cells = [m for m in fields[-1].markers if m.ns == "field"]
         self.assertTrue(cells and len(cells[0].points) > 0)
+        # scripts/plot_bag on this bag (issue #44 item 7): D_z and Ca_E against t gamma / (mu a),
+        # no D_xy or theta (no shear), Ca_E's change in the title, the x-z section.
+        import json
+        import subprocess
+        import rospkg
+        script = os.path.join(rospkg.RosPack().get_path("ehd_capsule"), "scripts", "plot_bag")
+        run = subprocess.run(["/usr/bin/python3", script, path, "--describe"],
+                             capture_output=True, text=True, timeout=120)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        plan = json.loads(run.stdout)
+        self.assertEqual([p["measure"] for p in plan["panels"]], ["d_field", "live"])
+        self.assertEqual(plan["time_label"], "t gamma / (mu a)")
+        self.assertIn("electric_drop_3d", plan["title"])
+        self.assertIn("Ca_E 0.3 -> 0.6 at t = %.4g" % states[changed].time, plan["title"])
+        self.assertEqual(plan["shape"]["axes"], ["x", "z"])
 
 
 if __name__ == "__main__":
