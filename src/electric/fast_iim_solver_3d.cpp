@@ -373,20 +373,74 @@ void FastIimSolver3D::PotentialAndNormalDerivative(const double* g, bool with_da
   }
 }
 
-void FastIimSolver3D::SetUpHarmonicBasis(const TriangleMesh& surface, int degree) {
-  // The directions move with the surface, so the basis is rebuilt unless nothing changed.
-  if (degree == basis_degree_ && surface.vertices().cols() == basis_positions_.cols() &&
+int FastIimSolver3D::CachedIcosphereLevel(const TriangleMesh& surface) {
+  // The same mesh as last time (a capsule's connectivity never changes): no new icosphere.
+  const int last = static_cast<int>(icosphere_triangles_.size()) - 1;
+  if (last >= 0 && surface.vertex_count() == 10 * (1 << (2 * last)) + 2 &&
+      surface.triangles() == icosphere_triangles_[last]) {
+    return last;
+  }
+  const int level = IcosphereLevel(surface);
+  icosphere_triangles_.clear();
+  for (int j = 0; j <= level; ++j) icosphere_triangles_.push_back(IcosphereMesh(j).triangles());
+  return level;
+}
+
+void FastIimSolver3D::SetUpHarmonicBasis(const TriangleMesh& surface, int level, int degree) {
+  if (level >= 0) {
+    // Icosphere connectivity: the unit icosphere's vertices and third areas (cached by level).
+    if (level == basis_level_ && degree == basis_degree_) return;
+    const TriangleMesh sphere = IcosphereMesh(level, 1.0);
+    basis_ = RealSphericalHarmonics(sphere.vertices(), degree);
+    const std::vector<double> area = VertexThirdAreas(sphere);
+    basis_sphere_area_ = Eigen::Map<const Eigen::VectorXd>(area.data(), sphere.vertex_count());
+    basis_level_ = level;
+    basis_degree_ = degree;
+    return;
+  }
+  // The radial parametrisation: the directions move with the surface, so the basis is rebuilt
+  // unless nothing changed.
+  if (basis_level_ < 0 && degree == basis_degree_ &&
+      surface.vertices().cols() == basis_positions_.cols() &&
       surface.vertices() == basis_positions_) {
     return;
   }
   basis_ = RealSphericalHarmonics(radial_.direction, degree);
   basis_sphere_area_ = radial_.solid_angle;
   basis_positions_ = surface.vertices();
+  basis_level_ = -1;
   basis_degree_ = degree;
 }
 
+namespace {
+
+// Vertex weights for surface integrals on a mesh of icosphere connectivity: the third areas of
+// its submeshes at `level` and below, Richardson-extrapolated `steps` times (the error of the
+// third-area rule on these nested meshes is an even series in the edge length, measured: each
+// step gains a factor 16, then 64, per level), on the first 10 * 4^level + 2 vertices of `mesh`.
+// steps <= level.
+// triangles[j]: IcosphereMesh(j)'s triangle list (the solver's cache).
+Eigen::VectorXd ExtrapolatedVertexWeights(
+    const Eigen::Matrix3Xd& x, const std::vector<std::vector<TriangleMesh::Triangle>>& triangles,
+    int level, int steps) {
+  if (steps == 0) {
+    const int count = 10 * (1 << (2 * level)) + 2;
+    const std::vector<double> a = VertexThirdAreas(x, triangles[level], count);
+    return Eigen::Map<const Eigen::VectorXd>(a.data(), count);
+  }
+  // R_s(level) = (4^s R_{s-1}(level) - R_{s-1}(level - 1)) / (4^s - 1).
+  Eigen::VectorXd q = ExtrapolatedVertexWeights(x, triangles, level, steps - 1);
+  const Eigen::VectorXd below = ExtrapolatedVertexWeights(x, triangles, level - 1, steps - 1);
+  const double factor = std::pow(4.0, steps);
+  q *= factor;
+  q.head(below.size()) -= below;
+  return q / (factor - 1.0);
+}
+
+}  // namespace
+
 GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
-                                                  const InterfaceProblem3D& problem,
+                                                  const InterfaceProblem3D& problem, int level,
                                                   std::vector<double>& g) {
   const int nv = surface.vertex_count();
   const double jump = sigma_plus_ - sigma_minus_;
@@ -398,11 +452,7 @@ GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
         "interior_source_integral (the integral of f^-/sigma^- over the inside, which the flux "
         "balance needs)");
   }
-  // The flux balance: mu = (mean(v)/[sigma] - flux/area) / scale. Without data (v = 0, no
-  // source: the leaky dielectric) mu = 0 for any weights, and the vertex third areas serve. With
-  // data the weights are those of the radial parametrisation, exact for the harmonics of degree
-  // <= kQuadratureDegree (geometry/radial_parametrisation.h); the same at 4 degrees fewer
-  // estimates the error.
+  // The flux balance: mu = (mean(v)/[sigma] - flux/area) / scale.
   const auto flux_mean = [&](const Eigen::VectorXd& q, double* area_out) {
     double area = 0, integral_v = 0;
     for (int i = 0; i < q.size(); ++i) {
@@ -414,22 +464,43 @@ GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
     return (integral_v / jump - flux) / area / scale;
   };
   const std::vector<double> third = VertexThirdAreas(surface);
-  const bool with_data =
-      with_source || std::any_of(v_.begin(), v_.end(), [](double x) { return x != 0.0; });
-  Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(third.data(), nv);
-  double mu_error = 0;
-  if (with_data) {
-    constexpr int kQuadratureDegree = 24;
-    int quadrature_degree = kQuadratureDegree;
-    while (quadrature_degree > 4 && SphericalHarmonicCount(quadrature_degree) * 4 > nv) {
-      --quadrature_degree;
+  Eigen::VectorXd q;
+  double area = 0, mu = 0, mu_error = 0;
+  if (level >= 0) {
+    // Icosphere connectivity: the vertex weights extrapolated twice (levels L, L - 1, L - 2); the
+    // same from the level below estimates its error (divided by 63: the rule's error falls 64x
+    // per level, measured on the sphere, ellipsoid and red cell).
+    const Eigen::Matrix3Xd& position = surface.vertices();
+    q = ExtrapolatedVertexWeights(position, icosphere_triangles_, level, 2);
+    mu = flux_mean(q, &area);
+    mu_error = level >= 3
+                   ? std::abs(mu - flux_mean(ExtrapolatedVertexWeights(
+                                                 position, icosphere_triangles_, level - 1, 2),
+                                             nullptr)) /
+                         63.0
+                   : std::abs(mu - flux_mean(ExtrapolatedVertexWeights(
+                                                 position, icosphere_triangles_, level, 1),
+                                             nullptr));
+  } else {
+    // Any other mesh: without data (v = 0, no source: the leaky dielectric) mu = 0 for any
+    // weights, and the vertex third areas serve. With data the weights are those of the radial
+    // parametrisation, exact for the harmonics of degree <= kQuadratureDegree
+    // (geometry/radial_parametrisation.h); the same at 4 degrees fewer estimates the error.
+    const bool with_data =
+        with_source || std::any_of(v_.begin(), v_.end(), [](double x) { return x != 0.0; });
+    q = Eigen::Map<const Eigen::VectorXd>(third.data(), nv);
+    if (with_data) {
+      constexpr int kQuadratureDegree = 24;
+      int quadrature_degree = kQuadratureDegree;
+      while (quadrature_degree > 4 && SphericalHarmonicCount(quadrature_degree) * 4 > nv) {
+        --quadrature_degree;
+      }
+      q = RadialSurfaceWeights(radial_, quadrature_degree);
+      mu_error = std::abs(flux_mean(q, nullptr) -
+                          flux_mean(RadialSurfaceWeights(radial_, quadrature_degree - 4), nullptr));
     }
-    q = RadialSurfaceWeights(radial_, quadrature_degree);
-    mu_error = std::abs(flux_mean(q, nullptr) -
-                        flux_mean(RadialSurfaceWeights(radial_, quadrature_degree - 4), nullptr));
+    mu = flux_mean(q, &area);
   }
-  double area = 0;
-  const double mu = flux_mean(q, &area);
   const Eigen::VectorXd mean_weight = q / area;
   // Degree: shortest wavelength 2 pi R / L >= harmonic_wavelength_h h, R of the same area, and
   // at least four vertices per basis function.
@@ -446,7 +517,7 @@ GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
        << "; refine the grid or the mesh";
     throw SolverError(os.str());
   }
-  SetUpHarmonicBasis(surface, degree);
+  SetUpHarmonicBasis(surface, level, degree);
   harmonic_degree_ = degree;
   Eigen::VectorXd test_weight(nv);
   for (int i = 0; i < nv; ++i) test_weight(i) = third[i] / area;
@@ -605,14 +676,27 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
     throw SolverError(os.str());
   }
   const bool harmonic = inner_ratio > options_.harmonic_basis_min_ratio;
-  if (harmonic) {
+  // A mesh of icosphere connectivity (every surface of the package) keeps the icosphere
+  // parametrisation; any other mesh takes the radial one, which needs a star-shaped surface.
+  const int level = harmonic ? CachedIcosphereLevel(surface) : -1;
+  if (harmonic && level >= 0 && level < 2) {
+    std::ostringstream os;
+    os << "3D immersed interface: sigma^-/sigma^+ = " << inner_ratio
+       << " > harmonic_basis_min_ratio = " << options_.harmonic_basis_min_ratio
+       << " needs a mesh of icosphere connectivity at subdivision level >= 2 (or another "
+          "triangulation) for the harmonic basis of [phi_n]; this one is coarser";
+    throw SolverError(os.str());
+  }
+  if (harmonic && level < 0) {
     radial_ = MakeRadialParametrisation(surface);
     if (!radial_.star_shaped()) {
       const auto& t = surface.triangles()[radial_.folded_triangle];
       std::ostringstream os;
       os << "3D immersed interface: sigma^-/sigma^+ = " << inner_ratio
          << " > harmonic_basis_min_ratio = " << options_.harmonic_basis_min_ratio
-         << " needs a surface star-shaped about its centroid (" << radial_.center.transpose()
+         << " needs a mesh of icosphere connectivity or a surface star-shaped about its "
+            "centroid ("
+         << radial_.center.transpose()
          << ") for the harmonic basis of [phi_n] in the directions from it, but triangle "
          << radial_.folded_triangle << " (vertices " << t[0] << ", " << t[1] << ", " << t[2]
          << ") is seen edge-on or from behind from there: the surface is not star-shaped";
@@ -640,7 +724,7 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
   } else {
     GmresResult r;
     if (harmonic) {
-      r = SolveInHarmonicBasis(surface, problem, g);
+      r = SolveInHarmonicBasis(surface, problem, level, g);
     } else {
       r = SolveAtVertices(nv, g);
     }

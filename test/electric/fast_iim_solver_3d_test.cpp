@@ -6,10 +6,10 @@
 // must converge at second order, and so must the Maxwell traction at the vertices and the grid
 // field E = -grad phi (observed orders printed). Above sigma^-/sigma^+ = 10 the solver seeks
 // [phi_n] in a spherical-harmonic basis with the flux balance deflated; without it GMRES stalls at
-// 1000:1; the basis works on any triangulation. Refusals (a ratio above max_inner_ratio, a surface
-// not star-shaped about its centroid, a source without its interior integral, an unresolved
-// curvature, a surface within 1 h of a box face, a coarse mesh, a dimple thinner than h, an
-// unresolved potential) are checked by name.
+// 1000:1; the basis works on any triangulation of a star-shaped surface. Refusals (a ratio above
+// max_inner_ratio, an icosphere below level 2 or another mesh not star-shaped about its centroid,
+// a source without its interior integral, an unresolved curvature, a surface within 1 h of a box
+// face, a coarse mesh, a dimple thinner than h, an unresolved potential) are checked by name.
 #include "ehd_capsule/electric/fast_iim_solver_3d.h"
 
 #include <gtest/gtest.h>
@@ -281,7 +281,10 @@ TEST(FastIimSolver3D, VertexValuesStallAtThousandToOne) {
 // GeneralProblemOnAnEllipsoid at 1000:1 ([phi], [sigma phi_n] and f non-zero, so the flux balance's
 // quadrature matters), its vertices renumbered and each triangle's list rotated, and an
 // octahedron-based triangulation of the same ellipsoid (valences 4 and 6), must
-// match the exact solution as the icosphere mesh does: the same errors to within 20 %.
+// match the exact solution as the icosphere mesh does: the same errors to within 20 %. The
+// icosphere keeps the icosphere parametrisation and extrapolated weights; the other two (a
+// renumbered icosphere is not of icosphere connectivity by its triangle list) take the radial
+// parametrisation and its quadrature.
 TriangleMesh Relabelled(const TriangleMesh& mesh) {
   const int nv = mesh.vertex_count();
   std::vector<int> order(nv);
@@ -376,10 +379,17 @@ TEST(FastIimSolver3D, RefusesWhatItCannotTrust) {
   } catch (const SolverError& e) {
     EXPECT_NE(std::string(e.what()).find("max_inner_ratio"), std::string::npos) << e.what();
   }
-  // Above 10 the harmonic basis lives on the directions from the centroid: a surface that is not
-  // star-shaped about it (an ellipsoid bent into a C, whose centroid lies in the C's opening, so
-  // the inner side of the C is seen from behind) is refused, naming the problem.
+  // Above 10 the harmonic basis of a mesh not of icosphere connectivity lives on the directions
+  // from the centroid: a surface that is not star-shaped about it (an ellipsoid bent into a C and
+  // renumbered, whose centroid lies in the C's opening, so the inner side of the C is seen from
+  // behind) is refused, naming the problem. An icosphere below level 2 is refused as before.
   problem.sigma_minus = 100;
+  try {
+    solver.Solve(IcosphereMesh(1, 0.5), problem, g, phi);
+    FAIL() << "an icosphere of level 1 was accepted at 100:1";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("coarser"), std::string::npos) << e.what();
+  }
   {
     TriangleMesh bent = EllipsoidMesh(3, 0.8, 0.2, 0.2);
     Eigen::Matrix3Xd x = bent.vertices();
@@ -390,7 +400,7 @@ TEST(FastIimSolver3D, RefusesWhatItCannotTrust) {
       x(1, i) = rho * std::cos(angle) - bend_radius;
     }
     try {
-      solver.Solve(TriangleMesh(x, bent.triangles()), problem, g, phi);
+      solver.Solve(Relabelled(TriangleMesh(x, bent.triangles())), problem, g, phi);
       FAIL() << "a surface that is not star-shaped was accepted at 100:1";
     } catch (const SolverError& e) {
       EXPECT_NE(std::string(e.what()).find("not star-shaped"), std::string::npos) << e.what();

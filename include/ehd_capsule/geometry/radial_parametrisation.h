@@ -24,9 +24,9 @@
 // exact for every Y_lm, l <= L (sum_i w_i Y_lm(u_i) = sqrt(4 pi) delta_l0), and grad r is that of
 // r's least-squares expansion in the same Y_lm (central differences of the expansion along two
 // tangents, 1e-5 rad). For a smooth r and f the error falls spectrally with L, against h^2 for the
-// third-area rule (measured in docs/electric_solver_3d.md). Not in a reference: it replaces the
-// Richardson extrapolation over nested icosphere submeshes, which needed the icosphere's vertex
-// order.
+// third-area rule (measured in docs/electric_solver_3d.md; it does not converge on the red cell).
+// Not in a reference. The solver uses it only on meshes not of icosphere connectivity; an
+// icosphere mesh keeps the Richardson extrapolation over its nested submeshes.
 #pragma once
 
 #include <Eigen/Core>
