@@ -13,6 +13,7 @@
 
 #include "ehd_capsule/electric/box_face_check.h"
 #include "ehd_capsule/electric/interface_jumps_3d.h"
+#include "ehd_capsule/geometry/radial_parametrisation.h"
 #include "ehd_capsule/geometry/spherical_harmonics.h"
 
 namespace ehd {
@@ -385,13 +386,29 @@ int FastIimSolver3D::CachedIcosphereLevel(const TriangleMesh& surface) {
   return level;
 }
 
-void FastIimSolver3D::SetUpHarmonicBasis(int level, int degree) {
-  if (level == basis_level_ && degree == basis_degree_) return;
-  const TriangleMesh sphere = IcosphereMesh(level, 1.0);
-  basis_ = RealSphericalHarmonics(sphere.vertices(), degree);
-  const std::vector<double> area = VertexThirdAreas(sphere);
-  basis_sphere_area_ = Eigen::Map<const Eigen::VectorXd>(area.data(), sphere.vertex_count());
-  basis_level_ = level;
+void FastIimSolver3D::SetUpHarmonicBasis(const TriangleMesh& surface, int level, int degree) {
+  if (level >= 0) {
+    // Icosphere connectivity: the unit icosphere's vertices and third areas (cached by level).
+    if (level == basis_level_ && degree == basis_degree_) return;
+    const TriangleMesh sphere = IcosphereMesh(level, 1.0);
+    basis_ = RealSphericalHarmonics(sphere.vertices(), degree);
+    const std::vector<double> area = VertexThirdAreas(sphere);
+    basis_sphere_area_ = Eigen::Map<const Eigen::VectorXd>(area.data(), sphere.vertex_count());
+    basis_level_ = level;
+    basis_degree_ = degree;
+    return;
+  }
+  // The radial parametrisation: the directions move with the surface, so the basis is rebuilt
+  // unless nothing changed.
+  if (basis_level_ < 0 && degree == basis_degree_ &&
+      surface.vertices().cols() == basis_positions_.cols() &&
+      surface.vertices() == basis_positions_) {
+    return;
+  }
+  basis_ = RealSphericalHarmonics(radial_.direction, degree);
+  basis_sphere_area_ = radial_.solid_angle;
+  basis_positions_ = surface.vertices();
+  basis_level_ = -1;
   basis_degree_ = degree;
 }
 
@@ -435,10 +452,7 @@ GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
         "interior_source_integral (the integral of f^-/sigma^- over the inside, which the flux "
         "balance needs)");
   }
-  // The flux balance: mu = (mean(v)/[sigma] - flux/area) / scale, with the vertex weights
-  // extrapolated twice (levels L, L - 1, L - 2); the same from the level below estimates its
-  // error (divided by 63: the rule's error falls 64x per level, measured on the sphere,
-  // ellipsoid and red cell).
+  // The flux balance: mu = (mean(v)/[sigma] - flux/area) / scale.
   const auto flux_mean = [&](const Eigen::VectorXd& q, double* area_out) {
     double area = 0, integral_v = 0;
     for (int i = 0; i < q.size(); ++i) {
@@ -449,20 +463,45 @@ GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
     const double flux = with_source ? problem.interior_source_integral : 0.0;
     return (integral_v / jump - flux) / area / scale;
   };
-  const Eigen::Matrix3Xd& position = surface.vertices();
-  const Eigen::VectorXd q = ExtrapolatedVertexWeights(position, icosphere_triangles_, level, 2);
-  double area = 0;
-  const double mu = flux_mean(q, &area);
+  const std::vector<double> third = VertexThirdAreas(surface);
+  Eigen::VectorXd q;
+  double area = 0, mu = 0, mu_error = 0;
+  if (level >= 0) {
+    // Icosphere connectivity: the vertex weights extrapolated twice (levels L, L - 1, L - 2); the
+    // same from the level below estimates its error (divided by 63: the rule's error falls 64x
+    // per level, measured on the sphere, ellipsoid and red cell).
+    const Eigen::Matrix3Xd& position = surface.vertices();
+    q = ExtrapolatedVertexWeights(position, icosphere_triangles_, level, 2);
+    mu = flux_mean(q, &area);
+    mu_error = level >= 3
+                   ? std::abs(mu - flux_mean(ExtrapolatedVertexWeights(
+                                                 position, icosphere_triangles_, level - 1, 2),
+                                             nullptr)) /
+                         63.0
+                   : std::abs(mu - flux_mean(ExtrapolatedVertexWeights(
+                                                 position, icosphere_triangles_, level, 1),
+                                             nullptr));
+  } else {
+    // Any other mesh: without data (v = 0, no source: the leaky dielectric) mu = 0 for any
+    // weights, and the vertex third areas serve. With data the weights are those of the radial
+    // parametrisation, exact for the harmonics of degree <= kQuadratureDegree
+    // (geometry/radial_parametrisation.h); the same at 4 degrees fewer estimates the error.
+    const bool with_data =
+        with_source || std::any_of(v_.begin(), v_.end(), [](double x) { return x != 0.0; });
+    q = Eigen::Map<const Eigen::VectorXd>(third.data(), nv);
+    if (with_data) {
+      constexpr int kQuadratureDegree = 24;
+      int quadrature_degree = kQuadratureDegree;
+      while (quadrature_degree > 4 && SphericalHarmonicCount(quadrature_degree) * 4 > nv) {
+        --quadrature_degree;
+      }
+      q = RadialSurfaceWeights(radial_, quadrature_degree);
+      mu_error = std::abs(flux_mean(q, nullptr) -
+                          flux_mean(RadialSurfaceWeights(radial_, quadrature_degree - 4), nullptr));
+    }
+    mu = flux_mean(q, &area);
+  }
   const Eigen::VectorXd mean_weight = q / area;
-  const double mu_error =
-      level >= 3
-          ? std::abs(mu - flux_mean(ExtrapolatedVertexWeights(position, icosphere_triangles_,
-                                                              level - 1, 2),
-                                    nullptr)) /
-                63.0
-          : std::abs(mu -
-                     flux_mean(ExtrapolatedVertexWeights(position, icosphere_triangles_, level, 1),
-                               nullptr));
   // Degree: shortest wavelength 2 pi R / L >= harmonic_wavelength_h h, R of the same area, and
   // at least four vertices per basis function.
   const double radius = std::sqrt(area / (4.0 * 3.14159265358979323846));
@@ -478,9 +517,8 @@ GmresResult FastIimSolver3D::SolveInHarmonicBasis(const TriangleMesh& surface,
        << "; refine the grid or the mesh";
     throw SolverError(os.str());
   }
-  SetUpHarmonicBasis(level, degree);
+  SetUpHarmonicBasis(surface, level, degree);
   harmonic_degree_ = degree;
-  const std::vector<double> third = VertexThirdAreas(surface);
   Eigen::VectorXd test_weight(nv);
   for (int i = 0; i < nv; ++i) test_weight(i) = third[i] / area;
   GalerkinUnknowns harmonics;
@@ -638,15 +676,32 @@ InterfaceSolveReport FastIimSolver3D::Solve(const TriangleMesh& surface,
     throw SolverError(os.str());
   }
   const bool harmonic = inner_ratio > options_.harmonic_basis_min_ratio;
+  // A mesh of icosphere connectivity (every surface of the package) keeps the icosphere
+  // parametrisation; any other mesh takes the radial one, which needs a star-shaped surface.
   const int level = harmonic ? CachedIcosphereLevel(surface) : -1;
-  if (harmonic && level < 2) {
+  if (harmonic && level >= 0 && level < 2) {
     std::ostringstream os;
     os << "3D immersed interface: sigma^-/sigma^+ = " << inner_ratio
        << " > harmonic_basis_min_ratio = " << options_.harmonic_basis_min_ratio
-       << " needs a mesh of icosphere connectivity (IcosphereMesh or a shape mapped from it) at "
-          "subdivision level >= 2 for the harmonic basis of [phi_n]"
-       << (level < 0 ? "; this mesh is not one" : "; this one is coarser");
+       << " needs a mesh of icosphere connectivity at subdivision level >= 2 (or another "
+          "triangulation) for the harmonic basis of [phi_n]; this one is coarser";
     throw SolverError(os.str());
+  }
+  if (harmonic && level < 0) {
+    radial_ = MakeRadialParametrisation(surface);
+    if (!radial_.star_shaped()) {
+      const auto& t = surface.triangles()[radial_.folded_triangle];
+      std::ostringstream os;
+      os << "3D immersed interface: sigma^-/sigma^+ = " << inner_ratio
+         << " > harmonic_basis_min_ratio = " << options_.harmonic_basis_min_ratio
+         << " needs a mesh of icosphere connectivity or a surface star-shaped about its "
+            "centroid ("
+         << radial_.center.transpose()
+         << ") for the harmonic basis of [phi_n] in the directions from it, but triangle "
+         << radial_.folded_triangle << " (vertices " << t[0] << ", " << t[1] << ", " << t[2]
+         << ") is seen edge-on or from behind from there: the surface is not star-shaped";
+      throw SolverError(os.str());
+    }
   }
   harmonic_degree_ = 0;
   flux_balance_error_ = 0;

@@ -32,20 +32,26 @@
 // ellipsoid at 1000:1, N = 32, with a direct solve). Two families, as in 2D
 // (fast_iim_solver.h): (1) the equilibrium density (the potential of G constant inside), and (2)
 // vertex-scale modes of G, which the grid's corrections and fits average out. The 3D treatment:
-// (2) G = sum_lm c_lm Y_lm on the mesh's icosphere parametrisation (the unit-sphere position of
-// each vertex in IcosphereMesh: geometry/spherical_harmonics.h), degree L with shortest
-// wavelength 2 pi R / L >= harmonic_wavelength_h * h, solved in the Galerkin sense (the residual
-// tested against each Y_lm with the vertex areas) where the 2D solver uses control markers; (1)
-// the flux balance: the surface integral of phi_n^- is that of f^-/sigma^- over the inside
-// (divergence theorem), so the area mean of every solution is mu = (mean(v)/[sigma] -
-// flux/area) / (sigma^+/[sigma]), known before solving, and the solver works on
-// R(G) - (mean(G) - mu) = 0 (the eigenvalue moves from sigma^+/[sigma] to sigma^+/[sigma] - 1).
-// mu divides the data's mean by sigma^+/[sigma], so its quadrature error is multiplied by
-// sigma^-/sigma^+ (zero for the leaky dielectric, v = 0 and f = 0): the means use vertex weights
-// Richardson-extrapolated over the mesh's last two subdivision levels, and the flux, which needs
-// the inside volume, is the caller's (InterfaceProblem3D::interior_source_integral). The
-// extrapolation's own error (from the levels below) is reported (flux_balance_error()) and
-// refused above max_flux_balance_error. A mesh not of icosphere connectivity is refused there.
+// (2) G = sum_lm c_lm Y_lm of a parametrisation of the surface by the unit sphere: on a mesh of
+// icosphere connectivity (every surface of the package) the unit-sphere position of each vertex
+// in IcosphereMesh (geometry/spherical_harmonics.h); on any other triangulation the directions of
+// the vertices from the centroid after the linear map that makes the volume's second moment
+// isotropic (geometry/radial_parametrisation.h: the surface must be star-shaped about its
+// centroid, else it is refused, naming a triangle seen edge-on or from behind). Degree L with
+// shortest wavelength 2 pi R / L >= harmonic_wavelength_h * h, solved in the Galerkin sense (the
+// residual tested against each Y_lm with the vertex areas) where the 2D solver uses control
+// markers; (1) the flux balance: the surface integral of phi_n^- is that of f^-/sigma^- over the
+// inside (divergence theorem), so the area mean of every solution is mu = (mean(v)/[sigma] -
+// flux/area) / (sigma^+/[sigma]), known before solving, and the solver works on R(G) - (mean(G) -
+// mu) = 0 (the eigenvalue moves from sigma^+/[sigma] to sigma^+/[sigma] - 1). mu divides the data's
+// mean by sigma^+/[sigma], so its quadrature error is multiplied by sigma^-/sigma^+. The means use
+// vertex weights Richardson-extrapolated over the icosphere's last two subdivision levels (error
+// estimate from the levels below), or on another mesh with data (v or f non-zero) the radial
+// parametrisation's high-order surface weights (exact on the sphere for degree <= 24; error
+// estimate from 4 degrees fewer) and without data (the leaky dielectric: mu = 0 exactly) the vertex
+// third areas. The flux, which needs the inside volume, is the caller's
+// (InterfaceProblem3D::interior_source_integral). The estimate is reported (flux_balance_error())
+// and refused above max_flux_balance_error.
 //
 // Guarantees (SolverError naming the vertex or the quantity and the remedy): every vertex with
 // max(|kappa1|, |kappa2|) h <= max_curvature_h and at least min_face_distance_h * h inside the
@@ -68,6 +74,7 @@
 #include "ehd_capsule/electric/interface_schur_system.h"
 #include "ehd_capsule/electric/surface_classification_3d.h"
 #include "ehd_capsule/geometry/local_surface_fit.h"
+#include "ehd_capsule/geometry/radial_parametrisation.h"
 
 namespace ehd {
 
@@ -175,12 +182,16 @@ class FastIimSolver3D {
   GmresResult SolveAtVertices(int nv, std::vector<double>& g);
   // grad_s phi^- from the fits' tangent rows and grad_s phi^+ = grad_s phi^- + grad_s w.
   void TangentialGradients(const std::vector<double>& phi);
-  // IcosphereLevel(surface), with IcosphereMesh(j)'s triangles for j <= level kept for the
-  // quadrature weights (rebuilt only when the connectivity changes).
+  // IcosphereLevel(surface) (-1: not of icosphere connectivity), with IcosphereMesh(j)'s
+  // triangles for j <= level kept for the quadrature weights (rebuilt only when the connectivity
+  // changes).
   int CachedIcosphereLevel(const TriangleMesh& surface);
-  // The harmonic basis at the vertices for degree L on a mesh of icosphere level `level` (cached).
-  void SetUpHarmonicBasis(int level, int degree);
-  // GMRES in the harmonic basis with the flux balance deflated (g: guess in, solution out).
+  // The harmonic basis of degree L: on the icosphere parametrisation for level >= 0 (cached by
+  // level and degree), else at the directions of radial_ (rebuilt when the surface's positions or
+  // the degree change).
+  void SetUpHarmonicBasis(const TriangleMesh& surface, int level, int degree);
+  // GMRES in the harmonic basis with the flux balance deflated (g: guess in, solution out);
+  // level: the icosphere level, or -1 for the radial parametrisation.
   GmresResult SolveInHarmonicBasis(const TriangleMesh& surface, const InterfaceProblem3D& problem,
                                    int level, std::vector<double>& g);
   // The nodes of vertex v's normal-derivative fit, |r| < fit_radius_h h (r = node - vertex), in
@@ -232,9 +243,13 @@ class FastIimSolver3D {
   double sigma_minus_ = 1, sigma_plus_ = 1;
   int poisson_solves_ = 0;
   InterfaceSchurSolver schur_;
-  // Harmonic basis (cached by level and degree): Y at the vertices, the unit icosphere's vertex
-  // areas (for projecting a warm start).
+  // Harmonic basis: Y at the vertices and the unit-sphere areas of the vertices (for projecting
+  // a warm start), on the icosphere parametrisation (IcosphereMesh(basis_level_): the unit
+  // icosphere's vertices and third areas) or, for basis_level_ = -1, on radial_ (its directions
+  // and solid angles; basis_positions_: the surface it was built for).
   std::vector<std::vector<TriangleMesh::Triangle>> icosphere_triangles_;
+  RadialParametrisation radial_;
+  Eigen::Matrix3Xd basis_positions_;
   int basis_level_ = -1, basis_degree_ = -1;
   Eigen::MatrixXd basis_;
   Eigen::VectorXd basis_sphere_area_;

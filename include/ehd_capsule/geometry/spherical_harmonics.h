@@ -3,7 +3,9 @@
 // icosahedron (IcosphereMesh and the shapes mapped from it: every 3D surface of this package).
 //
 // The 3D fast IIM (electric/fast_iim_solver_3d.h) represents [phi_n] in this basis for a much more
-// conducting inside, where the vertex values have near-null modes on the grid scale.
+// conducting inside, where the vertex values have near-null modes on the grid scale: on the
+// icosphere parametrisation for a mesh of icosphere connectivity, else at the directions of the
+// radial parametrisation (radial_parametrisation.h: any triangulation of a star-shaped surface).
 #pragma once
 
 #include <Eigen/Core>
