@@ -104,9 +104,9 @@ TEST(EhdPhysics, CaseATiltsTowardTheFlowAndCaseCTowardTheField) {
 // term of D. The a = 8 runs at L = 2.5 a give -12.6 % (A) and -0.9 % (C) at steady state (the
 // table "With the retracted immersed boundary"): A's error is there at a = 8 too (the box and the
 // retraction more than this grid). Tolerances: D within 20 % of the transient (A's -14 % with
-// room; a Maxwell force of the wrong sign or off by a factor 2 fails, and by linearity one 30 %
-// too strong would put Case C at about +24 %), and the ratio within 3 % of 2 (the measured 1.3 %
-// with room; a field scaled with Ca_E instead of sqrt(Ca_E) would give 4).
+// room), and the ratio within 3 % of 2 (the measured 1.3 % with room; a field scaled with Ca_E
+// instead of sqrt(Ca_E) would give 4). Shown once by scaling the electric stage's load: x 1.3
+// fails (Case C +25.4 %), x 2 fails (+97 %), x -1 fails (every sign); x 1.2 passes (C +15.4 %).
 double TaylorDropD(double sigma_r, double eps_r, double ca_e) {
   const double lambda = 1.0, r = sigma_r, q = eps_r;
   const double phi = r * r + 1 - 2 * q + 3 * (r - q) * (2 + 3 * lambda) / (5 * (1 + lambda));
