@@ -1,11 +1,14 @@
 // The 3D coupled step on a small grid (N = 24, a = 4 cells, 642 vertices): a neo-Hookean sphere
-// in shear deforms and tilts as a capsule does, keeps its volume, restarts bit for bit, resets
-// to a fresh run; the electric field acts on it (traction against the free-space sphere); 3D scene
-// keys are validated.
+// in shear deforms and tilts as a capsule does, keeps its volume, restarts bit for bit (also after
+// a live Ca or Ca_E change), resets to a fresh run, gives the same bits on 1, 2 and 3 threads and
+// is stopped at a wall; the electric field acts on it (traction against the free-space sphere);
+// 3D scene keys are validated.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,6 +21,30 @@ namespace {
 
 // A neo-Hookean sphere in shear, a = 4 cells on 24^3, 642 vertices.
 test::TinyScene TinySphere() { return test::TinyScene(3); }
+
+// The same state bit for bit: the vertices and every scalar the CSV writes (io/time_series.h).
+void ExpectSameState(const SimulationState& a, const SimulationState& b) {
+  EXPECT_EQ(a.step, b.step);
+  EXPECT_EQ(a.time, b.time);
+  EXPECT_TRUE((a.markers.array() == b.markers.array()).all());
+  EXPECT_TRUE((a.electric_force.array() == b.electric_force.array()).all());
+  EXPECT_EQ(a.electric_force_total, b.electric_force_total);
+  EXPECT_EQ(a.dxy, b.dxy);
+  EXPECT_EQ(a.inclination, b.inclination);
+  EXPECT_EQ(a.area, b.area);
+  EXPECT_EQ(a.area_drift, b.area_drift);
+  EXPECT_EQ(a.surface_drift, b.surface_drift);
+  EXPECT_EQ(a.d_field, b.d_field);
+  EXPECT_EQ(a.surface_flow, b.surface_flow);
+  EXPECT_EQ(a.volume_corrected, b.volume_corrected);
+  EXPECT_EQ(a.tt_phase, b.tt_phase);
+  EXPECT_EQ(a.stresslet_xy, b.stresslet_xy);
+  EXPECT_EQ(a.ca, b.ca);
+  EXPECT_EQ(a.ca_e, b.ca_e);
+  EXPECT_EQ(a.gmres_iterations, b.gmres_iterations);
+  EXPECT_EQ(a.gmres_residual, b.gmres_residual);
+  EXPECT_EQ(a.max_mach, b.max_mach);
+}
 
 TEST(Simulation3D, SphereInShearDeformsTiltsAndKeepsItsVolume) {
   Simulation sim(TinySphere().Build());
@@ -414,6 +441,135 @@ TEST(Simulation3D, SceneKeysAreValidatedForThreeDimensions) {
   EXPECT_EQ(skalak.M, 642);
   Simulation rbc(skalak);
   EXPECT_NE(rbc.Pipeline().find("Skalak"), std::string::npos);
+}
+
+// A live change (the node's dynamic reconfigure, Simulation::SetCa / SetCaE) is part of what a
+// checkpoint holds and what a reset undoes (docs/architecture.md, "The stage contract" 2 and 4;
+// simulation.h: Save/Restore "continues bit-for-bit", Reset "back to the initial state"). SetCa
+// changes the wall speed (the time per step doubles with Ca), SetCaE the field of the next solve.
+// Run A changes the value after 3 steps, is saved at step 6 and continues 5 steps; B restores
+// the file into a new Simulation of the scene and takes the same 5 steps: the same bits, the
+// live value included. A reset returns the live value to the scene's (a change still queued is
+// dropped) and the next 5 steps equal a fresh run's. The change is checked to matter (A differs
+// from a run without it), so a checkpoint that dropped it would fail.
+void LiveChangeSurvivesCheckpointAndReset(const Scene& scene,
+                                          const std::function<void(Simulation&)>& change,
+                                          double (*live)(const SimulationState&)) {
+  const std::string path = ::testing::TempDir() + "/ehd_checkpoint_3d_live_change.bin";
+  Simulation a(scene), unchanged(scene);
+  for (int i = 0; i < 3; ++i) a.Step(), unchanged.Step();
+  change(a);
+  for (int i = 0; i < 3; ++i) a.Step(), unchanged.Step();
+  const double changed = live(a.state());
+  EXPECT_NE(changed, live(unchanged.state()));
+  a.Save(path);
+  for (int i = 0; i < 5; ++i) a.Step(), unchanged.Step();
+  EXPECT_FALSE((a.state().markers.array() == unchanged.state().markers.array()).all());
+
+  Simulation b(scene);
+  b.Restore(path);
+  std::remove(path.c_str());
+  EXPECT_EQ(b.state().step, 6);
+  EXPECT_EQ(live(b.state()), changed);
+  for (int i = 0; i < 5; ++i) b.Step();
+  ExpectSameState(a.state(), b.state());
+  EXPECT_EQ(a.ux(), b.ux());
+
+  change(b);  // queued, then dropped by the reset
+  b.Reset();
+  EXPECT_EQ(live(b.state()), live(Simulation(scene).state()));
+  Simulation fresh(scene);
+  for (int i = 0; i < 5; ++i) fresh.Step(), b.Step();
+  ExpectSameState(fresh.state(), b.state());
+  EXPECT_EQ(fresh.ux(), b.ux());
+}
+
+TEST(Simulation3D, LiveCaChangeSurvivesCheckpointRestoreAndReset) {
+  const Scene scene = TinySphere().Build({"numerics.integrator=adams_bashforth2"});
+  LiveChangeSurvivesCheckpointAndReset(
+      scene, [](Simulation& sim) { sim.SetCa(0.1); },
+      [](const SimulationState& s) { return s.ca; });
+}
+
+// The same with a field (the tiny sphere of ElectricFieldActsOnTheMembrane, re-solved every 5
+// steps: on both sides of the checkpoint) and Ca_E halved live.
+TEST(Simulation3D, LiveCaEChangeSurvivesCheckpointRestoreAndReset) {
+  const Scene scene =
+      TinySphere().Build({"Ca_E=0.3", "sigma_r=1.75", "eps_r=3.5", "numerics.electric_every=5"});
+  LiveChangeSurvivesCheckpointAndReset(
+      scene, [](Simulation& sim) { sim.SetCaE(0.15); },
+      [](const SimulationState& s) { return s.ca_e; });
+}
+
+// The coupled step gives the same bits on any thread count (docs/lbm.md: the LBM kernel's rows
+// are independent, "1 thread == 2 threads bit-for-bit"; docs/electric_solver_3d.md: the IIM
+// set-up's per-vertex fits and band rows are "laid out in order: the same bits on any thread
+// count"; no stage has an OpenMP reduction). numerics.threads reaches only the LBM, and the LBM
+// runs a thread per 8192 nodes at most, so the box is 32 x 24 x 32 (24576 nodes: 3 threads);
+// the IIM set-up takes the OpenMP default, set here to the same count. With the field re-solved
+// every 5 steps, 20 steps: the vertices and every CSV scalar are equal bit for bit between 1, 2
+// and 3 threads (measured: equal).
+TEST(Simulation3D, CoupledStepIsBitForBitOverThreadCounts) {
+  const int default_threads = omp_get_max_threads();
+  std::vector<SimulationState> states;
+  for (const int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    Simulation sim(TinySphere().Build({"geometry.half_length=4", "Ca_E=0.3", "sigma_r=1.75",
+                                       "eps_r=3.5", "numerics.electric_every=5",
+                                       "numerics.threads=" + std::to_string(threads)}));
+    for (int i = 0; i < 20; ++i) sim.Step();
+    states.push_back(sim.state());
+  }
+  omp_set_num_threads(default_threads);
+  EXPECT_GT(states[0].dxy, 0.0);
+  for (std::size_t k = 1; k < states.size(); ++k) {
+    SCOPED_TRACE(k + 1);
+    ExpectSameState(states[0], states[k]);
+  }
+}
+
+// The wall watchdog in 3D (simulation.h: a marker closer than 2 h to a wall stops the run; the
+// check is MarkerStage::CheckInside; 2D: Simulation.WatchdogNamesStepAndQuantity). Walls at
+// y = +-12 cells (L = 3 a, a = 4 cells), the margin at 10. Placed: center_y = 1.8 a puts the top
+// of the capsule at 11.2 cells: step 1 stops naming the vertex and the wall. Deformed: a capsule
+// in shear near the wall does not get closer (measured at Ca = 1 from a top at 9.6 cells: the
+// wall flattens it, 9.60 -> 8.30 cells by t = 4), so the deformation is an oblate drop's (Taylor's
+// Case A, sigma_r = 1.75, eps_r = 3.5, Ca_E = 1, field along z: its equator widens towards the y
+// walls). Its top starts 0.12 cells outside the margin (9.88 cells; near the wall the top rises by
+// at most ~0.26 cells, measured from center_y = 1.4) and crosses it at t = 1.34 (step 130, a vertex
+// at y = 10.0004, D = -0.079); the run stops naming the vertex and the wall, the points finite.
+// Without the check the drop would run on to t = 3 and the test fail. 1.3 s.
+TEST(Simulation3D, WallWatchdogStopsABodyNearingTheWall) {
+  Simulation placed(TinySphere().Build({"geometry.center_y=1.8"}));
+  try {
+    placed.Step();
+    ADD_FAILURE() << "a capsule 0.8 cells from the wall was not stopped";
+  } catch (const SimulationError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("step 1:"), std::string::npos) << what;
+    EXPECT_NE(what.find("vertex"), std::string::npos) << what;
+    EXPECT_NE(what.find("within 2h of the wall y = 12"), std::string::npos) << what;
+  }
+  Simulation drop(TinySphere()
+                      .Name("oblate_drop_near_wall")
+                      .Drop()
+                      .AtRest(1)
+                      .Field(1.0, 1.75, 3.5)
+                      .Build({"geometry.center_y=1.47", "numerics.electric_every=50",
+                              "numerics.electric_move_tolerance=0.02"}));
+  ASSERT_NO_THROW(drop.Step()) << "0.12 cells outside the margin";
+  try {
+    while (drop.state().time < 3.0) drop.Step();
+    ADD_FAILURE() << "the widening drop was not stopped at the wall";
+  } catch (const SimulationError& e) {
+    const std::string what = e.what();
+    std::printf("oblate drop: stopped at t = %.3f, D along the field %.3f: %s\n", drop.state().time,
+                drop.state().d_field, what.c_str());
+    EXPECT_NE(what.find("vertex"), std::string::npos) << what;
+    EXPECT_NE(what.find("within 2h of the wall y = 12"), std::string::npos) << what;
+    EXPECT_LT(drop.state().d_field, 0.0);
+    EXPECT_TRUE(drop.state().markers.allFinite());
+  }
 }
 
 }  // namespace
