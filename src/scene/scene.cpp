@@ -738,15 +738,11 @@ SceneModule NumericsModule(const CoreConditions& c) {
                  "numerics.relax_mesh_every steps)")
            .Otherwise(0.0)
            .Store(StoreNumerics(&SceneNumerics::redistribute_markers)),
-       ChoiceKey(
-           "numerics.ib_kernel", {"cosine", "roma3"},
-           "the immersed boundary's discrete delta: roma3 (Roma, Peskin & Berger 1999, 3 nodes "
-           "per axis) or cosine (song2019 eq. (103), 4 nodes; ib/delta_kernel.h, "
-           "docs/validation_3d.md \"The kernel\")")
-           .DefaultFrom("roma3 in 3D, cosine in 2D",
-                        [](const Scene& s) {
-                          return SceneValue{0, s.dimension == 3 ? "roma3" : "cosine"};
-                        })
+       ChoiceKey("numerics.ib_kernel", {"cosine", "roma3"},
+                 "the immersed boundary's discrete delta: cosine (song2019 eq. (103), 4 nodes per "
+                 "axis) or roma3 (Roma, Peskin & Berger 1999, 3 nodes; ib/delta_kernel.h, "
+                 "docs/validation_3d.md \"The kernel\")")
+           .Default("cosine")
            .Store([](Scene& s, const SceneValue& v) { s.numerics.ib_kernel = v.text; }),
        NumberKey("numerics.ib_retraction", Closed(0.0, 1.5), "cells",
                  "spread the force and interpolate the velocity at the points moved inward along "

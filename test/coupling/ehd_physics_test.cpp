@@ -124,6 +124,7 @@ std::pair<double, double> RunDrop3D(double sigma_r, double ca_e) {
                      .Grid(20)
                      .With("numerics.electric_every", 50)
                      .With("numerics.electric_move_tolerance", 0.02)
+                     .With("numerics.ib_kernel", "roma3")  // as measured
                      .Build());
   while (sim.state().time < 4.0) sim.Step();
   return {sim.state().d_field, sim.state().time};

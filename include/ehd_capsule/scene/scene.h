@@ -99,8 +99,9 @@ struct SceneNumerics {
   // the enclosed volume is the initial one again (geometry/triangle_mesh.h,
   // RestoreEnclosedVolume): the immersed boundary leaks slowly; 0 = off.
   int volume_correction_every = 0;
-  // The immersed boundary's discrete delta: "cosine" (song2019 eq. (103); the 2D default) or
-  // "roma3" (Roma, Peskin & Berger 1999; the 3D default since issue #42); ib/delta_kernel.h.
+  // The immersed boundary's discrete delta: "cosine" (song2019 eq. (103); the default) or
+  // "roma3" (Roma, Peskin & Berger 1999; more accurate at large strain in 3D, but not yet stable
+  // over long runs: docs/validation_3d.md "The kernel"); ib/delta_kernel.h.
   std::string ib_kernel = "cosine";
   // The immersed boundary's points retracted inward along the normals by this many cells
   // (coupling/retracted_points.h; calibrated per kernel in docs/validation_3d.md); 0 = the points
