@@ -14,6 +14,7 @@
 
 #include "ehd_capsule/coupling/simulation.h"
 #include "ehd_capsule/reference/interface_examples_3d.h"
+#include "support/same_state.h"
 #include "support/tiny_scene.h"
 
 namespace ehd {
@@ -23,29 +24,7 @@ namespace {
 // The roma3 kernel (retracted 0.37 h), with which these tests' figures were measured.
 test::TinyScene TinySphere() { return test::TinyScene(3).With("numerics.ib_kernel", "roma3"); }
 
-// The same state bit for bit: the vertices and every scalar the CSV writes (io/time_series.h).
-void ExpectSameState(const SimulationState& a, const SimulationState& b) {
-  EXPECT_EQ(a.step, b.step);
-  EXPECT_EQ(a.time, b.time);
-  EXPECT_TRUE((a.markers.array() == b.markers.array()).all());
-  EXPECT_TRUE((a.electric_force.array() == b.electric_force.array()).all());
-  EXPECT_EQ(a.electric_force_total, b.electric_force_total);
-  EXPECT_EQ(a.dxy, b.dxy);
-  EXPECT_EQ(a.inclination, b.inclination);
-  EXPECT_EQ(a.area, b.area);
-  EXPECT_EQ(a.area_drift, b.area_drift);
-  EXPECT_EQ(a.surface_drift, b.surface_drift);
-  EXPECT_EQ(a.d_field, b.d_field);
-  EXPECT_EQ(a.surface_flow, b.surface_flow);
-  EXPECT_EQ(a.volume_corrected, b.volume_corrected);
-  EXPECT_EQ(a.tt_phase, b.tt_phase);
-  EXPECT_EQ(a.stresslet_xy, b.stresslet_xy);
-  EXPECT_EQ(a.ca, b.ca);
-  EXPECT_EQ(a.ca_e, b.ca_e);
-  EXPECT_EQ(a.gmres_iterations, b.gmres_iterations);
-  EXPECT_EQ(a.gmres_residual, b.gmres_residual);
-  EXPECT_EQ(a.max_mach, b.max_mach);
-}
+using test::ExpectSameState;  // support/same_state.h
 
 TEST(Simulation3D, SphereInShearDeformsTiltsAndKeepsItsVolume) {
   Simulation sim(TinySphere().Build());

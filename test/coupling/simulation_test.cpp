@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/same_state.h"
 #include "support/tiny_scene.h"
 
 namespace ehd {
@@ -25,26 +26,7 @@ void RunUntil(Simulation& sim, double t) {
   while (sim.state().time < t) sim.Step();
 }
 
-// The same state bit for bit: the markers and every scalar the CSV writes (io/time_series.h).
-void ExpectSameState(const SimulationState& a, const SimulationState& b) {
-  EXPECT_EQ(a.step, b.step);
-  EXPECT_EQ(a.time, b.time);
-  EXPECT_TRUE((a.markers.array() == b.markers.array()).all());
-  EXPECT_TRUE((a.electric_force.array() == b.electric_force.array()).all());
-  EXPECT_EQ(a.electric_force_total, b.electric_force_total);
-  EXPECT_EQ(a.dxy, b.dxy);
-  EXPECT_EQ(a.inclination, b.inclination);
-  EXPECT_EQ(a.area, b.area);
-  EXPECT_EQ(a.area_drift, b.area_drift);
-  EXPECT_EQ(a.surface_drift, b.surface_drift);
-  EXPECT_EQ(a.tt_phase, b.tt_phase);
-  EXPECT_EQ(a.stresslet_xy, b.stresslet_xy);
-  EXPECT_EQ(a.ca, b.ca);
-  EXPECT_EQ(a.ca_e, b.ca_e);
-  EXPECT_EQ(a.gmres_iterations, b.gmres_iterations);
-  EXPECT_EQ(a.gmres_residual, b.gmres_residual);
-  EXPECT_EQ(a.max_mach, b.max_mach);
-}
+using test::ExpectSameState;  // support/same_state.h
 
 // A scene builds only what it needs.
 TEST(Simulation, PipelineHasOnlyWhatTheSceneNeeds) {

@@ -8,8 +8,9 @@
 // small-Ca deformation 12-25 % above (25/12) Ca); retracting the points removes most of it
 // (Breugem, J. Comput. Phys. 231 (2012) 4469, for direct forcing). delta is calibrated per
 // kernel on the exact small-Ca deformation and rotation of a spherical capsule: 0.5 h for the
-// cosine kernel (the default), 0.37 h for roma3 (docs/validation_3d.md "The kernel"); with cosine the stresslet would need 0.8-1.0 h, which no single adjoint delta
-// reconciles (docs/validation_3d.md).
+// cosine kernel (the default), 0.37 h for roma3 (docs/validation_3d.md "The kernel"); with cosine
+// the stresslet would need 0.8-1.0 h, which no single adjoint delta reconciles
+// (docs/validation_3d.md).
 //
 // Departure from Breugem (rigid particles, whose velocity is prescribed): a membrane moves with
 // the fluid at its own position, not at X_r (the kinematic condition). The velocity at X_r is
