@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -423,52 +422,10 @@ TEST(Simulation3D, SceneKeysAreValidatedForThreeDimensions) {
   EXPECT_NE(rbc.Pipeline().find("Skalak"), std::string::npos);
 }
 
-// A live change (the node's dynamic reconfigure, Simulation::SetCa / SetCaE) is part of what a
-// checkpoint holds and what a reset undoes (docs/architecture.md, "The stage contract" 2 and 4;
-// simulation.h: Save/Restore "continues bit-for-bit", Reset "back to the initial state"). SetCa
-// changes the wall speed (the time per step doubles with Ca), SetCaE the field of the next solve.
-// Run A changes the value after 3 steps, is saved at step 6 and continues 5 steps; B restores
-// the file into a new Simulation of the scene and takes the same 5 steps: the same bits, the
-// live value included. A reset returns the live value to the scene's (a change still queued is
-// dropped) and the next 5 steps equal a fresh run's. The change is checked to matter (A differs
-// from a run without it), so a checkpoint that dropped it would fail.
-void LiveChangeSurvivesCheckpointAndReset(const Scene& scene,
-                                          const std::function<void(Simulation&)>& change,
-                                          double (*live)(const SimulationState&)) {
-  const std::string path = ::testing::TempDir() + "/ehd_checkpoint_3d_live_change.bin";
-  Simulation a(scene), unchanged(scene);
-  for (int i = 0; i < 3; ++i) a.Step(), unchanged.Step();
-  change(a);
-  for (int i = 0; i < 3; ++i) a.Step(), unchanged.Step();
-  const double changed = live(a.state());
-  EXPECT_NE(changed, live(unchanged.state()));
-  a.Save(path);
-  for (int i = 0; i < 5; ++i) a.Step(), unchanged.Step();
-  EXPECT_FALSE((a.state().markers.array() == unchanged.state().markers.array()).all());
-
-  Simulation b(scene);
-  b.Restore(path);
-  std::remove(path.c_str());
-  EXPECT_EQ(b.state().step, 6);
-  EXPECT_EQ(live(b.state()), changed);
-  for (int i = 0; i < 5; ++i) b.Step();
-  ExpectSameState(a.state(), b.state());
-  EXPECT_EQ(a.ux(), b.ux());
-
-  change(b);  // queued, then dropped by the reset
-  b.Reset();
-  EXPECT_EQ(live(b.state()), live(Simulation(scene).state()));
-  Simulation fresh(scene);
-  for (int i = 0; i < 5; ++i) fresh.Step(), b.Step();
-  ExpectSameState(fresh.state(), b.state());
-  EXPECT_EQ(fresh.ux(), b.ux());
-}
-
+// A live Ca change survives a checkpoint, restore and reset (support/same_state.h).
 TEST(Simulation3D, LiveCaChangeSurvivesCheckpointRestoreAndReset) {
   const Scene scene = TinySphere().Build({"numerics.integrator=adams_bashforth2"});
-  LiveChangeSurvivesCheckpointAndReset(
-      scene, [](Simulation& sim) { sim.SetCa(0.1); },
-      [](const SimulationState& s) { return s.ca; });
+  test::ExpectLiveChangeSurvivesCheckpointAndReset(scene, [](Simulation& sim) { sim.SetCa(0.1); });
 }
 
 // The same with a field (the tiny sphere of ElectricFieldActsOnTheMembrane, re-solved every 5
@@ -476,9 +433,8 @@ TEST(Simulation3D, LiveCaChangeSurvivesCheckpointRestoreAndReset) {
 TEST(Simulation3D, LiveCaEChangeSurvivesCheckpointRestoreAndReset) {
   const Scene scene =
       TinySphere().Build({"Ca_E=0.3", "sigma_r=1.75", "eps_r=3.5", "numerics.electric_every=5"});
-  LiveChangeSurvivesCheckpointAndReset(
-      scene, [](Simulation& sim) { sim.SetCaE(0.15); },
-      [](const SimulationState& s) { return s.ca_e; });
+  test::ExpectLiveChangeSurvivesCheckpointAndReset(scene,
+                                                   [](Simulation& sim) { sim.SetCaE(0.15); });
 }
 
 // The coupled step gives the same bits on any thread count (docs/lbm.md: the LBM kernel's rows

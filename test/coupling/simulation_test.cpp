@@ -216,43 +216,16 @@ TEST(Simulation, CheckpointRestartIsBitForBit) {
   std::remove(path.c_str());
 }
 
-// A live change (SetCa: the wall speed, the time per step doubling with Ca; SetCaE: the field of
-// the next solve) is part of what a checkpoint holds and what a reset undoes
-// (docs/architecture.md, "The stage contract" 2 and 4): changed after 3 steps, saved at step 6,
-// 5 more steps; restored into a new Simulation, the same 5 steps give the same bits and the live
-// values; a reset (a change still queued is dropped) returns them to the scene's and repeats a
-// fresh run. A run without the change differs, so a checkpoint that dropped it would fail.
+// Live Ca and Ca_E changes together survive a checkpoint, restore and reset
+// (support/same_state.h).
 TEST(Simulation, LiveChangesSurviveCheckpointRestoreAndReset) {
   const Scene scene =
       TinyCapsule().Build({"Ca_E=0.2", "sigma_r=1.75", "eps_r=3.5", "numerics.electric_every=3",
                            "numerics.integrator=adams_bashforth2"});
-  const std::string path = ::testing::TempDir() + "/ehd_checkpoint_live_change.bin";
-  Simulation a(scene), unchanged(scene);
-  for (int i = 0; i < 3; ++i) a.Step(), unchanged.Step();
-  a.SetCa(0.15);
-  a.SetCaE(0.1);
-  for (int i = 0; i < 3; ++i) a.Step(), unchanged.Step();
-  a.Save(path);
-  for (int i = 0; i < 5; ++i) a.Step(), unchanged.Step();
-  EXPECT_FALSE((a.state().markers.array() == unchanged.state().markers.array()).all());
-
-  Simulation b(scene);
-  b.Restore(path);
-  std::remove(path.c_str());
-  EXPECT_EQ(b.state().ca, 0.15);
-  EXPECT_EQ(b.state().ca_e, 0.1);
-  for (int i = 0; i < 5; ++i) b.Step();
-  ExpectSameState(a.state(), b.state());
-  EXPECT_EQ(a.ux(), b.ux());
-
-  b.SetCa(0.15);  // queued, then dropped by the reset
-  b.Reset();
-  EXPECT_EQ(b.state().ca, 0.1);
-  EXPECT_EQ(b.state().ca_e, 0.2);
-  Simulation fresh(scene);
-  for (int i = 0; i < 5; ++i) fresh.Step(), b.Step();
-  ExpectSameState(fresh.state(), b.state());
-  EXPECT_EQ(fresh.ux(), b.ux());
+  test::ExpectLiveChangeSurvivesCheckpointAndReset(scene, [](Simulation& sim) {
+    sim.SetCa(0.15);
+    sim.SetCaE(0.1);
+  });
 }
 
 // The coupled step gives the same bits on any thread count (docs/lbm.md: the LBM kernel's rows
