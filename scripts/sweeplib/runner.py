@@ -188,41 +188,22 @@ def merged_rows(chunks, k):
     return rows
 
 
-def _merge_csv(chunks, k, path):
+def _merge_chunks(chunks, k, suffix, path):
+    """The chunks' CSV files (<j><suffix>) as one: the first header once, a restarted chunk's
+    repeated header dropped, and a row cut short by a kill (fewer fields) left out."""
     header = None
     with open(path + ".tmp", "w") as out:
         for j in range(1, k + 1):
-            p = os.path.join(chunks, "%d.csv" % j)
-            if not os.path.exists(p):
-                continue
-            with open(p) as f:
-                lines = f.read().splitlines()
-            if not lines:
-                continue
-            if header is None:
-                header = lines[0]
-                out.write(header + "\n")
-            for line in lines[1:]:
-                if line.count(",") == header.count(","):
-                    out.write(line + "\n")
-    os.replace(path + ".tmp", path)
-
-
-def _merge_sections(chunks, k, path):
-    """The chunks' --sections files as one: a restarted chunk appends without a header."""
-    header = None
-    with open(path + ".tmp", "w") as out:
-        for j in range(1, k + 1):
-            p = os.path.join(chunks, "%d.sections.csv" % j)
+            p = os.path.join(chunks, "%d%s" % (j, suffix))
             if not os.path.exists(p):
                 continue
             with open(p) as f:
                 for line in f.read().splitlines():
                     if header is None:
                         header = line
-                    elif line == header:
-                        continue
-                    out.write(line + "\n")
+                        out.write(header + "\n")
+                    elif line != header and line.count(",") == header.count(","):
+                        out.write(line + "\n")
     os.replace(path + ".tmp", path)
 
 
@@ -355,9 +336,9 @@ def _finish(sweep, run, folder, chunks, k, rows, stopped, error, resumed, ehd_si
     walls = [json.load(open(os.path.join(chunks, n))) for n in os.listdir(chunks)
              if re.match(r"^[0-9]+\.json$", n)]
     final = read_chunk_summary(os.path.join(chunks, "%d.summary.json" % k)) if k else None
-    _merge_csv(chunks, k, os.path.join(folder, "series.csv"))
+    _merge_chunks(chunks, k, ".csv", os.path.join(folder, "series.csv"))
     if sweep.sections_every:
-        _merge_sections(chunks, k, os.path.join(folder, "sections.csv"))
+        _merge_chunks(chunks, k, ".sections.csv", os.path.join(folder, "sections.csv"))
     last_ckpt = os.path.join(chunks, "%d.ckpt" % k)
     if not error and sweep.vtk_final and os.path.exists(last_ckpt):
         # Frame 0 of a one-step restart is the final state itself; the frame after the step
