@@ -13,10 +13,6 @@ DeltaKernel ParseDeltaKernel(const std::string& name) {
                               "' (expected cosine or roma3)");
 }
 
-const char* DeltaKernelName(DeltaKernel kernel) {
-  return kernel == DeltaKernel::kRoma3 ? "roma3" : "cosine";
-}
-
 double DeltaKernelValue(DeltaKernel kernel, double r_over_h) {
   if (kernel == DeltaKernel::kCosine4) return CosineDelta(r_over_h);
   const double r = std::abs(r_over_h);

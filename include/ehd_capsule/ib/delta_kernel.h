@@ -24,13 +24,6 @@ enum class DeltaKernel { kCosine4, kRoma3 };
 
 // "cosine" | "roma3" (the scene key numerics.ib_kernel); throws std::invalid_argument otherwise.
 DeltaKernel ParseDeltaKernel(const std::string& name);
-const char* DeltaKernelName(DeltaKernel kernel);
-
-// Nodes per axis in the support (4 or 3) and the support's half width in h (2 or 1.5).
-inline int DeltaKernelNodes(DeltaKernel kernel) { return kernel == DeltaKernel::kRoma3 ? 3 : 4; }
-inline double DeltaKernelHalfWidth(DeltaKernel kernel) {
-  return kernel == DeltaKernel::kRoma3 ? 1.5 : 2.0;
-}
 
 // phi(r) for r = distance / h.
 double DeltaKernelValue(DeltaKernel kernel, double r_over_h);
