@@ -106,9 +106,8 @@ void PlaceInitialShape(const Scene& s, const LatticeUnits& u, Body<3>& body) {
 
 // The initial body against the box, before anything is allocated: a shape thinner than a cell
 // along an axis (a degenerate ellipse) or longer than a periodic box, or one that reaches a wall
-// or beyond, is refused naming the keys that place and size it. (A body inside the box but
-// within 2 h of a wall is left to the marker stage, which stops the run at the first step with
-// the marker and the wall.)
+// or comes within the marker stage's 2 h margin of one, is refused naming the keys that place
+// and size it. (A body that moves closer during the run is stopped by the marker stage.)
 template <int D>
 void CheckInitialShape(const Scene& s, const LatticeUnits& u,
                        const Eigen::Matrix<double, D, Eigen::Dynamic>& x) {
@@ -144,17 +143,23 @@ void CheckInitialShape(const Scene& s, const LatticeUnits& u,
       }
       continue;
     }
-    if (lo > -half_box && hi < half_box) continue;
-    const bool upper = hi >= half_box;
+    // The marker stage's margin (MarkerStage::CheckInside): a point closer than 2 h to a wall
+    // would lose part of its kernel's support, and the run would stop at step 1.
+    const double margin = 2.0;  // 2 h, in cells
+    if (lo >= -half_box + margin && hi <= half_box - margin) continue;
+    const bool upper = hi > half_box - margin;
     const double reach = (upper ? hi : lo) / u.radius;
+    const std::string where = std::abs(reach) < box_a    ? "within 2 h of"
+                              : std::abs(reach) == box_a ? "on"
+                                                         : "past";
     throw SceneError(
-        fail + " reaches " + axis + " = " + FormatValue(reach) + " a, " +
-        (std::abs(reach) == box_a ? "on" : "past") + " the wall " + axis + " = " +
-        FormatValue(upper ? box_a : -box_a) + " a (" + box_key + " = " + FormatValue(box_a) +
-        "): move geometry.center_" + axis + " (now " + FormatValue(centre[a]) + ")" +
-        (ellipse ? ", change" + shape_key.substr(1) : std::string()) + " or raise " + box_key +
-        " so that the body lies inside, at least 2 h = " + FormatValue(2.0 / u.radius) +
-        " a from the wall (the run stops at the first step closer than that)");
+        fail + " reaches " + axis + " = " + FormatValue(reach) + " a, " + where + " the wall " +
+        axis + " = " + FormatValue(upper ? box_a : -box_a) + " a (" + box_key + " = " +
+        FormatValue(box_a) + "): move geometry.center_" + axis + " (now " +
+        FormatValue(centre[a]) + ")" + (ellipse ? ", change" + shape_key.substr(1) : std::string()) +
+        " or raise " + box_key + " so that the body lies inside, at least 2 h = " +
+        FormatValue(margin / u.radius) + " a from the wall (the run stops at the first step " +
+        "closer than that)");
   }
 }
 

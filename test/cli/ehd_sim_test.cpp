@@ -277,6 +277,12 @@ TEST(EhdSim, BadInputIsRefusedNamingTheKeyOrOption) {
        1,
        {"the initial circle reaches y = 4.9 a, past the wall y = 4 a",
         "move geometry.center_y (now 3.9)"}},
+      // Inside the box but within the marker stage's 2 h margin (a = 4 cells: 0.5 a), which
+      // would stop the run at step 1.
+      {tiny + "--steps 1 --set geometry.center_y=2.8",
+       1,
+       {"the initial circle reaches y = 3.8 a, within 2 h of the wall y = 4 a",
+        "move geometry.center_y (now 2.8)", "at least 2 h = 0.5 a"}},
       // Options.
       {tiny + "--until inf", 2, {"--until must be a time in (0, 1e+06]", "'inf'"}},
       {tiny + "--until 1e300", 2, {"--until must be a time in (0, 1e+06]", "'1e300'"}},
@@ -402,8 +408,9 @@ TEST(EhdSim, SummaryJsonSaysHowTheRunEnded) {
   EXPECT_GT(std::stod(JsonField(text, "wall_seconds")), 0.0);
   EXPECT_NE(text.find("\"fluid\": "), std::string::npos) << text;  // seconds per stage
 
-  // A capsule against the wall stops at step 1 with the watchdog's words and exit status 1.
-  r = RunSim(tiny + " --steps 30 --set geometry.center_y=2.8");
+  // A capsule started on the 2 h wall margin, which the shear carries it across (step 7), stops
+  // with the watchdog's words and exit status 1.
+  r = RunSim(tiny + " --steps 30 --set geometry.center_y=2.5");
   EXPECT_EQ(r.status, 1) << r.output;
   text = ReadFile(json);
   EXPECT_EQ(JsonField(text, "status"), "\"simulation_error\"") << text;

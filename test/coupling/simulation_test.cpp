@@ -172,16 +172,26 @@ TEST(Simulation, MembraneLimitFailsEarlyWithAUsableSuggestion) {
   EXPECT_NO_THROW(Simulation(TinyCapsule().Build(fixed)));
 }
 
-// A capsule placed against the wall stops at once with an error naming the step and the wall.
+// A capsule within 2 h of a wall is refused before the run; one started on the margin (its top at
+// y = 14 cells, the wall at 16) is carried across it by the shear and stops with an error naming
+// the step, the marker and the wall (step 11, measured).
 TEST(Simulation, WatchdogNamesStepAndQuantity) {
-  Simulation sim(TinyCapsule().Build({"geometry.center_y=2.8"}));
   try {
-    sim.Step();
-    FAIL();
+    Simulation refused(TinyCapsule().Build({"geometry.center_y=2.8"}));
+    ADD_FAILURE() << "a capsule 0.8 cells from the wall was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("within 2 h of the wall y = 4 a"), std::string::npos)
+        << e.what();
+  }
+  Simulation sim(test::TinyScene(2).Build({"geometry.center_y=2.5"}));  // a = 4 cells
+  try {
+    for (int i = 0; i < 30; ++i) sim.Step();
+    FAIL() << "the capsule was not stopped at the wall";
   } catch (const SimulationError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("step 1"), std::string::npos) << what;
-    EXPECT_NE(what.find("wall"), std::string::npos) << what;
+    EXPECT_NE(what.find("step 11:"), std::string::npos) << what;
+    EXPECT_NE(what.find("marker"), std::string::npos) << what;
+    EXPECT_NE(what.find("within 2h of the wall y = 16"), std::string::npos) << what;
   }
 }
 
