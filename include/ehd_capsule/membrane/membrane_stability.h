@@ -28,6 +28,8 @@ struct MembraneStabilityLimits {
   double elastic_dt = std::numeric_limits<double>::infinity();  // E_s (+ prestress tau)
   double bending_dt = std::numeric_limits<double>::infinity();  // E_B
   double viscous_number = 0.0;                                  // V above
+  // The tangential grid-Nyquist limit of E_s (LatticeCompressionStep; 2D, D2Q9 only).
+  double compression_dt = std::numeric_limits<double>::infinity();
   double min_dt() const;
 };
 
@@ -44,5 +46,20 @@ MembraneStabilityLimits EstimateMembraneStability(
     double gamma, double elastic_stiffness, double bending_modulus, double membrane_viscosity,
     double fluid_viscosity, double grid_spacing, double min_marker_spacing,
     const KernelTransform& kernel_transform = CosineDeltaTransform);
+
+// T_pi = sum_j (-1)^j phi(j) = 2 sum_{p >= 0} phi_hat((2 p + 1) pi) (Poisson summation): how
+// much of a force alternating cell by cell a marker on a node spreads (and of such a velocity it
+// interpolates); the largest over the marker's offset in the cell. 0 for the cosine kernel
+// (sum_even phi = sum_odd phi = 1/2 at every offset), 1/3 for roma3.
+double GridNyquistTransmission(const KernelTransform& kernel_transform);
+
+// The tangential grid-Nyquist limit (2D, D2Q9 MRT with the coupling's rates, lattice units rho =
+// h = dt = 1; measured with bench/ib_membrane_modes_bench, see the header comment): the stable
+// step for the in-plane stiffness E_s of a membrane with marker spacing dl_min and LBM relaxation
+// time tau, in the AB2 convention of EstimateMembraneStability (forward Euler: twice it),
+//   dt_max = S_c / (2 E_s),  S_c = c (dl_min / h) (2 (tau - 1/2))^(1/3) / T_pi^2,  c = 0.0261.
+// Infinite when the kernel's T_pi vanishes (cosine) or E_s <= 0.
+double LatticeCompressionStep(double elastic_stiffness, double tau, double grid_spacing,
+                              double min_marker_spacing, const KernelTransform& kernel_transform);
 
 }  // namespace ehd
