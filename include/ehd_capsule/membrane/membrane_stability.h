@@ -16,6 +16,21 @@
 //   V = mu_s max_k k phi_hat(k h)^2 / (4 mu) < 1/2          (first-order difference: < 1).
 // LBM's finite fluid inertia per step makes the real response smaller than the Stokes one, so V
 // is a warning indicator, and all limits are estimates to fail early or sub-step, not guarantees.
+//
+// Measured (bench/ib_membrane_modes_bench: a flat periodic membrane in a periodic D2Q9 box, the
+// coupling's classes and stage order; docs/validation_3d.md, "The kernel"). The smallest
+// S dt / (mu h) at which a mode grows with forward Euler, dl = 0.79 h, tau = 1:
+//   cosine  39 tangential, 44 normal (the estimate above: 13.8, 2.8 times too strict);
+//   roma3   1.15 tangential, 29 normal (the estimate: 10.4).
+// roma3's tangential mode grows at k h = pi along the membrane: a force alternating cell by cell,
+// which compresses the weakly compressible lattice fluid. The incompressible Stokes response has
+// no such mode. Its threshold in lattice units hardly follows the viscosity (S_c = 0.11 ... 0.23
+// for tau = 0.6 ... 1.5), so it is acoustic. The cosine kernel does not couple to it
+// (sum_j (-1)^j phi(r - j) = 0 at every r); roma3 couples with T_pi = 1/3.
+// LatticeCompressionStep is the empirical fit, within -7.5 % ... +2.5 % of eight measured
+// points (dl 0.75 ... 1.29 h, tau 0.6 ... 1.5):
+//   S_c = 0.235 (dl / h) (2 (tau - 1/2))^(1/3) / (9 T_pi^2)  (forward Euler; AB2: half).
+// Only the 2D stage applies it. D3Q19's bulk rate follows tau, and 3D is not measured.
 #pragma once
 
 #include <functional>
