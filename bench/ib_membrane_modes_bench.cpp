@@ -21,7 +21,8 @@
 //   --mode m --stiffness S : g for that mode and stiffness;
 //   --threshold            : the smallest S/mu at which mode m grows (g > 1), by bisection;
 //   --scan                 : the threshold of every mode m = 1 .. M/2, and the minimum.
-// Every threshold line also prints the limits membrane_stability.h predicts for it.
+// Every threshold line also prints the old estimate's limit for that mode (quasi-static Stokes,
+// phi_hat(k h)^2) and the new one (with the grid-Nyquist limit of a tangential mode).
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -169,13 +170,6 @@ double Threshold(const Setup& s, int m, int* dominant) {
   return 0.5 * (lo + hi);
 }
 
-// Provisional model (moved to membrane_stability once it fits).
-double ModelRate(double k, double dl, double h, double tau, const ehd::KernelTransform& phi) {
-  const double mu = (tau - 0.5) / 3.0;
-  const double chain = 4.0 * std::pow(std::sin(0.5 * k * dl), 2) / (dl * dl);
-  return chain * std::pow(phi(k * h), 2) / (4.0 * mu * k);
-}
-
 // The limits the estimate gives for a single mode: S / mu at which dt = 1 is the forward-Euler
 // (or AB2) limit, old (quasi-static Stokes 1 / (4 mu k), phi_hat(k h)^2) and new
 // (ehd::LatticeModeRate).
@@ -188,9 +182,12 @@ void PrintLimits(const Setup& s, int m, double measured, int dominant) {
   const double euler = s.ab2 ? 1.0 : 2.0;
   // Old: sigma = S k phi^2 / (4 mu), the chain's k^2 taken as the continuous one.
   const double old_limit = euler * 4.0 / (k * std::pow(phi(k * h), 2));
-  // New: sigma = S rate(k), with the lattice's response and the chain's symbol.
-  const double rate = ModelRate(k, dl, h, s.tau, phi);
-  const double new_limit = (s.ab2 ? 1.0 : 2.0) / rate;
+  // New: the old one, and for a tangential mode the grid-Nyquist limit
+  // (LatticeCompressionStep, AB2 convention: forward Euler twice it).
+  const double mu = (s.tau - 0.5) / 3.0;
+  const double nyquist =
+      s.normal ? INFINITY : euler * ehd::LatticeCompressionStep(1.0, s.tau, h, dl, phi) / mu;
+  const double new_limit = std::min(old_limit, nyquist);
   std::printf("%3d %6.3f %10.4g %10.4g %6.3f %10.4g %6.3f %4d %6.3f\n", m, k * h, measured,
               old_limit, measured / old_limit, new_limit, measured / new_limit, dominant,
               2.0 * kPi * dominant / s.nx);
