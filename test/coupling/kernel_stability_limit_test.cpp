@@ -1,8 +1,9 @@
 // The tiny 2D capsule of CapsuleSmallCa (a = 4, 32 markers, Ca = 0.0025, Re = 0.2) with the roma3
 // kernel grows tangential modes at the grid Nyquist and stops on the Mach watchdog at one
-// membrane substep, and is stable with two (docs/validation_3d.md, "The kernel"): the
-// grid-Nyquist limit (membrane_stability.h) refuses the first with advice to substep and accepts
-// the second; the cosine kernel (the default) is accepted at one substep.
+// membrane substep (t = 5.3), and runs to t = 20 with two (docs/validation_3d.md, "The kernel";
+// a slower growth still stops it at t = 25, which no limit here covers): the grid-Nyquist limit
+// (membrane_stability.h) refuses the first with advice to substep and accepts the second; the
+// cosine kernel (the default) is accepted at one substep.
 #include <gtest/gtest.h>
 
 #include <string>
