@@ -34,6 +34,13 @@ KernelTransform KernelTransformOf(const Scene& scene) {
   return CosineDeltaTransform;
 }
 
+// The smallest spline arc length between neighbouring markers (as MembraneModel::Stability).
+double MinSpacing(const ClosedCurve& curve) {
+  double least = curve.SegmentArcLength(0);
+  for (int k = 1; k < curve.size(); ++k) least = std::min(least, curve.SegmentArcLength(k));
+  return least;
+}
+
 // The key that sets the tension scale T: Ca with shear, Oh without.
 std::string TensionKey(const Scene& scene) { return scene.has_shear() ? "Ca" : "Oh"; }
 
@@ -48,9 +55,12 @@ std::string SofterTension(const Scene& scene) {
 // The advice when the explicit limit is exceeded: the substeps needed (in double: a tiny Ca or
 // Oh needs more than an int holds) or, beyond numerics.membrane_substeps's maximum, the keys
 // that make the membrane softer (`softer`).
-std::string SubstepAdvice(const Scene& scene, double dt_stable, const std::string& softer) {
+// `power`: the limit grows as n^power with the substeps n (1 for the viscous limits, whose
+// dt_max ~ mu / S ~ n; 5/3 for the grid-Nyquist one, S_c / S ~ n^2 (tau - 1/2)^(1/3)).
+std::string SubstepAdvice(const Scene& scene, double dt_stable, const std::string& softer,
+                          double power = 1.0) {
   const int now = scene.numerics.membrane_substeps;
-  const double needed = std::ceil(now / dt_stable);
+  const double needed = std::ceil(now * std::pow(dt_stable, -1.0 / power) - 1e-9);
   const double most = DeclaredSceneKey("numerics.membrane_substeps").range.hi;
   if (needed <= most) {
     return "set numerics.membrane_substeps >= " + std::to_string(static_cast<int>(needed)) +
@@ -81,13 +91,21 @@ struct MembraneMechanics<2> {
     }
     const ClosedCurve reference(body.initial);
     model_ = std::make_unique<MembraneModel>(mp, reference);
-    const MembraneStabilityLimits limits =
+    MembraneStabilityLimits limits =
         model_->Stability(reference, units.viscosity, 1.0, KernelTransformOf(scene));
+    // The tangential grid-Nyquist limit of a kernel that transmits that mode (roma3; measured on
+    // D2Q9 only, so 2D only): membrane_stability.h.
+    limits.compression_dt = LatticeCompressionStep(mp.shear_modulus, units.tau, 1.0,
+                                                   MinSpacing(reference), KernelTransformOf(scene));
     const double dt_stable = StableLatticeStep(scene, limits);
     if (dt_stable < 1.0) {
       const bool bending = limits.bending_dt == limits.min_dt();
+      const bool compression = limits.compression_dt == limits.min_dt();
       const std::string key = TensionKey(scene);
-      const std::string term = bending                                ? "bending (E_b)"
+      const std::string term = bending ? "bending (E_b)"
+                               : compression
+                                   ? "tangential grid-Nyquist (" + key + ", numerics.ib_kernel " +
+                                         scene.numerics.ib_kernel + ")"
                                : limits.elastic_dt == limits.min_dt() ? "elasticity (" + key + ")"
                                                                       : "tension (" + key + ")";
       throw SceneError(
@@ -95,7 +113,8 @@ struct MembraneMechanics<2> {
           " term: stable lattice dt " + FormatValue(dt_stable) + " < 1 (" + model_->Describe() +
           "); " +
           SubstepAdvice(scene, dt_stable,
-                        bending ? Change("lower", "E_b", scene.E_b) : SofterTension(scene)));
+                        bending ? Change("lower", "E_b", scene.E_b) : SofterTension(scene),
+                        compression ? 5.0 / 3.0 : 1.0));
     }
     viscous_number_ = limits.viscous_number;
   }

@@ -9,7 +9,7 @@
 namespace ehd {
 
 double MembraneStabilityLimits::min_dt() const {
-  return std::min({tension_dt, elastic_dt, bending_dt});
+  return std::min({tension_dt, elastic_dt, bending_dt, compression_dt});
 }
 
 double CosineDeltaTransform(double xi) {
@@ -52,6 +52,31 @@ MembraneStabilityLimits EstimateMembraneStability(double gamma, double elastic_s
   if (bending_modulus > 0.0) lim.bending_dt = four_mu / (bending_modulus * g3);
   lim.viscous_number = std::max(membrane_viscosity, 0.0) * g1 / four_mu;
   return lim;
+}
+
+double GridNyquistTransmission(const KernelTransform& kernel_transform) {
+  constexpr double kPi = 3.141592653589793;
+  // The series of phi_hat at the odd multiples of pi, to 23 pi (a C^1 kernel's phi_hat decays as
+  // xi^-3: the tail is ~1e-4 of roma3's 1/3; Roma3DeltaTransform's quadrature holds to there).
+  double sum = 0.0;
+  for (int p = 0; p < 12; ++p) sum += kernel_transform((2 * p + 1) * kPi);
+  const double t = std::abs(2.0 * sum);
+  return t < 1e-6 ? 0.0 : t;
+}
+
+double LatticeCompressionStep(double elastic_stiffness, double tau, double grid_spacing,
+                              double min_marker_spacing, const KernelTransform& kernel_transform) {
+  if (!(elastic_stiffness > 0.0)) return std::numeric_limits<double>::infinity();
+  if (!(tau > 0.5) || !(grid_spacing > 0.0) || !(min_marker_spacing > 0.0)) {
+    throw std::invalid_argument("LatticeCompressionStep: tau must be > 1/2 and the spacings > 0");
+  }
+  const double t_pi = GridNyquistTransmission(kernel_transform);
+  if (t_pi == 0.0) return std::numeric_limits<double>::infinity();
+  // Forward Euler's measured threshold; AB2 measured half of it (0.577 against 1.15 S / mu).
+  constexpr double kC = 0.0261;  // 0.235 / 9: roma3's S_c = 0.235 (dl / h) at tau = 1
+  const double critical =
+      kC * (min_marker_spacing / grid_spacing) * std::cbrt(2.0 * (tau - 0.5)) / (t_pi * t_pi);
+  return critical / (2.0 * elastic_stiffness);
 }
 
 }  // namespace ehd
