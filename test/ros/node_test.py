@@ -32,7 +32,7 @@ import dynamic_reconfigure.client
 from std_srvs.srv import Trigger
 from ehd_capsule.msg import CapsuleState
 
-from ehd_test_helpers import node_binary
+from ehd_test_helpers import ROOT, node_binary
 
 NODE = "/ehd_capsule"
 
@@ -278,6 +278,17 @@ class NodeTest(unittest.TestCase):
                     break
             time.sleep(0.05)
         self.assertIsNotNone(found, "no step-1 state after reset")
+        # Issue #47: the live values changed by tests 2 and 3 (Ca_E 0.2, Ca halved) return to
+        # the scene's (config/scenes/shear_field.yaml, read here), in the state and in
+        # dynamic_reconfigure.
+        import yaml
+        with open(os.path.join(ROOT, "config", "scenes", "shear_field.yaml")) as f:
+            scene = yaml.safe_load(f)
+        self.assertEqual(found.ca, scene["Ca"])
+        self.assertEqual(found.ca_e, scene["Ca_E"])
+        config = self.client.get_configuration(timeout=10)
+        self.assertEqual(config["Ca"], scene["Ca"])
+        self.assertEqual(config["Ca_E"], scene["Ca_E"])
 
     def test_7_invalid_scene_exits_with_message(self):
         import re
