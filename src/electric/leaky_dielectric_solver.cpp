@@ -7,6 +7,7 @@
 #include <chrono>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "ehd_capsule/electric/electric_field.h"
 
@@ -30,7 +31,8 @@ struct FieldGeometry<2> {
   }
   // A new field scales |b|: the 2D solver's warm-start reference is forgotten.
   static void FieldChanged(FastIimSolver& iim) { iim.ResetWarmStart(); }
-  // F_E = [M_E] . n per unit length (eq. (148)); E_tau is continuous ([phi] = 0).
+  // F_E = [M_E] . n per unit length (eq. (148)), with each side's E_tau (continuous for
+  // [phi] = 0; with a jump w, E_tau^+ = E_tau^- - w').
   static void Force(const FastIimSolver& iim, const ClosedCurve& curve, double eps_minus,
                     double eps_plus, const std::vector<double>& en_minus,
                     const std::vector<double>& en_plus, Eigen::Matrix2Xd& traction,
@@ -120,7 +122,10 @@ void LeakyDielectricSolver<D>::SetAppliedField(double e) {
   // The same value: nothing changes (the coupled step calls this before every solve).
   if (e != applied_field_) {
     FieldGeometry<D>::FieldChanged(iim_);
-    if (applied_field_ != 0.0 && e != 0.0) {
+    const auto nonzero = [](double x) { return x != 0.0; };
+    const bool jumps = std::any_of(problem_.w.begin(), problem_.w.end(), nonzero) ||
+                       std::any_of(problem_.v.begin(), problem_.v.end(), nonzero);
+    if (applied_field_ != 0.0 && e != 0.0 && !jumps) {
       const double scale = e / applied_field_;
       for (double& v : warm_.g) v *= scale;
       for (double& v : warm_.g_previous) v *= scale;
@@ -128,6 +133,13 @@ void LeakyDielectricSolver<D>::SetAppliedField(double e) {
   }
   applied_field_ = e;
   FieldGeometry<D>::SetFieldData(iim_.grid(), e, problem_);
+}
+
+template <int D>
+void LeakyDielectricSolver<D>::SetInterfaceJumps(std::vector<double> w, std::vector<double> v) {
+  problem_.w = std::move(w);
+  problem_.v = std::move(v);
+  FieldGeometry<D>::FieldChanged(iim_);  // new data: the 2D solver's |b| reference is stale
 }
 
 template <int D>

@@ -12,10 +12,18 @@
 // 3D, per vertex, the traction per unit area times the vertex's mixed Voronoi area
 // (triangle_mesh.h), so that it spreads like the membrane's vertex forces.
 //
+// Jumps (issue #43 item 3; not in the reference): a caller may give [phi] = w and [sigma phi_n] = v
+// at the points (SetInterfaceJumps), e.g. a capacitive membrane's transmembrane potential
+// w = phi^+ - phi^- = -V_m (V_m = phi^- - phi^+, inside minus outside). The fast IIM takes them
+// with the tangential derivatives of w in its corrections; the tangential field then jumps,
+// E_tau^+ = E_tau^- - grad_s w, and the Maxwell traction uses each side's.
+//
 // Warm start, the same in both dimensions: G = [phi_n] of the previous solve is the next guess
 // (when the point count is unchanged); a caller that passes the time of each solve gets the
 // linear extrapolation of the last two solutions instead (Solve(shape, time)), and a new field
-// strength rescales them (G is linear in E: f = w = v = 0 and the box data scale with E).
+// strength rescales them (G is linear in E while f = w = v = 0 and the box data scale with E).
+// With a jump set, G is not proportional to E: a new field strength keeps the warm start
+// unscaled (a guess: the solve's tolerance does not depend on it).
 #pragma once
 
 #include <Eigen/Core>
@@ -64,9 +72,16 @@ class LeakyDielectricSolver {
                         double eps_minus, double eps_plus, const Options& options = Options());
 
   // E_inf = -e along the last axis. A change from e_old != 0 to e != 0 rescales the stored
-  // solutions by e / e_old: a step in Ca_E keeps its warm start.
+  // solutions by e / e_old when no jump is set: a step in Ca_E keeps its warm start.
   void SetAppliedField(double e);
   double applied_field() const { return applied_field_; }
+
+  // [phi] = w and [sigma phi_n] = v at the points of the shapes solved next (one value per
+  // point; empty: zero). Solve throws std::invalid_argument when a size differs from the
+  // point count.
+  void SetInterfaceJumps(std::vector<double> w, std::vector<double> v = {});
+  const std::vector<double>& potential_jump() const { return problem_.w; }
+  const std::vector<double>& flux_jump() const { return problem_.v; }
 
   // Solves for the shape at `time` (any monotone clock, e.g. the step number). When the two
   // previous solves were timed too (t0 < t1 < time, same point count), GMRES starts from
