@@ -2,8 +2,10 @@
 #include "ehd_capsule/coupling/stages/electric_stage.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
+#include "ehd_capsule/coupling/field_waveform.h"
 #include "ehd_capsule/electric/leaky_dielectric_solver.h"
 
 namespace ehd {
@@ -19,6 +21,9 @@ ElectricStage<D>::ElectricStage(const Scene& scene, const LatticeUnits& units, c
     throw SceneError("scene " + scene.name + ": the electric field takes one body (" +
                      std::to_string(data.bodies.size()) + " in the scene)");
   }
+  const std::string unresolved =
+      WaveformResolutionProblem(scene.electric, scene.has_shear() ? units.shear_rate : units.dt);
+  if (!unresolved.empty()) throw SceneError("scene " + scene.name + ": " + unresolved);
   solver_ = std::make_unique<typename DimensionTraits<D>::Electric>(
       grid, units.sigma_minus, units.sigma_plus, units.eps_minus, units.eps_plus);
   if constexpr (D == 2) {
@@ -52,6 +57,14 @@ std::string ElectricStage<D>::Describe() const {
     }
   }
   out << (D == 2 ? ", F_E = [M_E].n" : ", force [M_E].n A_i per vertex");
+  const SceneElectric& e = scene_.electric;
+  if (e.waveform == FieldWaveform::kAc) {
+    out << "; AC field E (" << e.offset << " + cos(2 pi " << e.frequency << " t + " << e.phase
+        << ")), between solves the force follows E(t)^2";
+  } else if (e.waveform == FieldWaveform::kPulses) {
+    out << "; pulsed field: on for " << e.pulse_width << " of every " << e.pulse_period << ", "
+        << (e.pulse_count > 0 ? std::to_string(e.pulse_count) + " pulses" : "without end");
+  }
   return out.str();
 }
 
@@ -68,6 +81,23 @@ void ElectricStage<D>::Reset() {
   }
   last_solve_step_ = -1;
   solved_field_ = -1.0;
+  base_load_.resize(D, 0);
+  base_traction_.resize(D, 0);
+  base_field_ = 0.0;
+}
+
+template <int D>
+void ElectricStage<D>::KeepBase(double field) {
+  base_load_ = source_.load;
+  base_traction_ = source_.traction;
+  base_field_ = field;
+}
+
+template <int D>
+void ElectricStage<D>::ScaleBase(double field) {
+  const double r = field / base_field_;
+  source_.load = base_load_ * (r * r);
+  source_.traction = base_traction_ * (r * r);
 }
 
 template <int D>
@@ -115,14 +145,21 @@ void ElectricStage<D>::Run(long step) {
   SimulationState& state = *data_.state;
   state.gmres_iterations = 0;
   const int n = body_.size();
-  const double field = data_.controls.field;
-  if (!(field > 0.0)) {
+  // E(t) at the start of the step (the state's time is t^n until the step ends).
+  const bool varying = IsTimeDependent(scene_.electric);
+  const double field = data_.controls.field *
+                       (varying ? FieldWaveformFactor(scene_.electric, data_.state->time) : 1.0);
+  if (field == 0.0 || !(std::abs(field) > 0.0)) {
     source_.load.setZero(D, n);
     source_.traction.setZero(D, n);
-    solved_field_ = 0.0;
+    if (!varying) solved_field_ = 0.0;  // a time-dependent field keeps its last solve to scale
     return;
   }
-  bool solve = last_solve_step_ < 0 || solved_field_ != field ||
+  // A field that changes in time is not re-solved for its strength alone: with the points
+  // within the move tolerance the quasi-static potential is the last solve's times E / E_solved
+  // (G is linear in E: f = w = v = 0), and the Maxwell traction its times (E / E_solved)^2.
+  const bool new_strength = solved_field_ != field && !(varying && base_field_ != 0.0);
+  bool solve = last_solve_step_ < 0 || new_strength ||
                step - last_solve_step_ >= scene_.numerics.electric_every;
   if (!solve && scene_.numerics.electric_move_tolerance > 0.0) {
     // Largest point displacement since the last solve (no temporary: this runs every step).
@@ -139,12 +176,19 @@ void ElectricStage<D>::Run(long step) {
       // (If the surface did move, the solve below replaces the re-interpolated forces.)
       if (ReinterpolateTraction(scene_.numerics.electric_shape_tolerance)) {
         positions_at_last_solve_ = x;
+        if (varying) {
+          KeepBase(solved_field_);  // the re-interpolated traction is at the solved field
+          ScaleBase(field);
+        }
         return;
       }
     }
     solve = moved;
   }
-  if (!solve) return;
+  if (!solve) {
+    if (varying) ScaleBase(field);
+    return;
+  }
   solver_->SetAppliedField(field);
   InterfaceSolveReport report;
   try {
@@ -167,6 +211,7 @@ void ElectricStage<D>::Run(long step) {
   positions_at_last_solve_ = body_.positions();
   last_solve_step_ = step;
   solved_field_ = field;
+  if (varying) KeepBase(field);
   if (D == 3 && scene_.numerics.electric_shape_tolerance > 0.0) {
     solved_positions_ = body_.positions();
     solved_traction_ = source_.traction;
@@ -208,6 +253,11 @@ void ElectricStage<D>::Save(CheckpointWriter& w) const {
     w.Mat(solved_positions_);
     w.Mat(solved_traction_);
   }
+  if (IsTimeDependent(scene_.electric)) {  // (a dc scene's section is unchanged)
+    w.Mat(base_load_);
+    w.Mat(base_traction_);
+    w.Pod(base_field_);
+  }
 }
 
 template <int D>
@@ -232,6 +282,11 @@ void ElectricStage<D>::Restore(CheckpointReader& r) {
     solved_positions_ = r.Mat<3>();
     solved_traction_ = r.Mat<3>();
     projector_.reset();  // rebuilt from solved_positions_ when needed
+  }
+  if (IsTimeDependent(scene_.electric)) {
+    base_load_ = r.Mat<D>();
+    base_traction_ = r.Mat<D>();
+    base_field_ = r.Pod<double>();
   }
 }
 

@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "ehd_capsule/coupling/coupled_step.h"
+#include "ehd_capsule/coupling/field_waveform.h"
 
 namespace ehd {
 
@@ -184,6 +185,13 @@ void Simulation::SetCa(double ca) {
     throw std::invalid_argument("Ca = " + FormatValue(ca) + " gives wall Mach " +
                                 FormatValue(mach) + " > " + FormatValue(scene_.numerics.max_mach) +
                                 ": accepted [0, " + FormatValue(ca_max) + "]");
+  }
+  // With shear the unit of time is 1/k: a larger Ca takes more of a waveform's period per step.
+  if (has_electric_field()) {
+    const std::string unresolved = WaveformResolutionProblem(scene_.electric, k);
+    if (!unresolved.empty()) {
+      throw std::invalid_argument("Ca = " + FormatValue(ca) + ": " + unresolved);
+    }
   }
   pending_ca_ = ca;
 }

@@ -600,6 +600,11 @@ SceneModule FlowModule(const CoreConditions& c) {
 }
 
 SceneModule ElectricModule(const CoreConditions& c) {
+  const KeyCondition ac{"waveform: ac",
+                        [](const Scene& s) { return s.electric.waveform == FieldWaveform::kAc; }};
+  const KeyCondition pulses{"waveform: pulses", [](const Scene& s) {
+                              return s.electric.waveform == FieldWaveform::kPulses;
+                            }};
   auto store_ca_e = [](Scene& s, const SceneValue& v) {
     s.Ca_E = v.number;
     s.electric_field = s.Ca_E > 0.0 || s.values.count("electric") > 0;
@@ -625,6 +630,50 @@ SceneModule ElectricModule(const CoreConditions& c) {
            .Default(0.0)
            .When(c.no_block, "")
            .Store(store_ca_e),
+       ChoiceKey("electric.waveform", {"dc", "ac", "pulses"},
+                 "the field's time dependence E(t) = E f(t), E from Ca_E: dc f = 1; ac f = "
+                 "offset + cos(2 pi frequency t + phase); pulses f = 1 for pulse_width of each "
+                 "pulse_period, else 0 (issue #45; quasi-static: below the charge relaxation "
+                 "frequency)")
+           .Default("dc")
+           .Store([](Scene& s, const SceneValue& v) {
+             s.electric.waveform = v.text == "ac"       ? FieldWaveform::kAc
+                                   : v.text == "pulses" ? FieldWaveform::kPulses
+                                                        : FieldWaveform::kDc;
+           }),
+       NumberKey("electric.frequency", LeftOpen(0.0, 1e6), "1/t",
+                 "ac: cycles per unit of time (1/k with shear, else mu a / T); a period must "
+                 "span at least 20 lattice steps")
+           .Required()
+           .When(ac, "only electric.waveform: ac has it")
+           .Store([](Scene& s, const SceneValue& v) { s.electric.frequency = v.number; }),
+       NumberKey("electric.phase", Closed(-10.0, 10.0), "rad", "ac: the phase at t = 0")
+           .Default(0.0)
+           .When(ac, "only electric.waveform: ac has it")
+           .Store([](Scene& s, const SceneValue& v) { s.electric.phase = v.number; }),
+       NumberKey("electric.offset", Closed(-10.0, 10.0), "1",
+                 "ac: the DC offset in units of the amplitude")
+           .Default(0.0)
+           .When(ac, "only electric.waveform: ac has it")
+           .Store([](Scene& s, const SceneValue& v) { s.electric.offset = v.number; }),
+       NumberKey("electric.pulse_width", LeftOpen(0.0, 1e6), "t",
+                 "pulses: the time the field is on in each period, from its start (at least 4 "
+                 "lattice steps)")
+           .Required()
+           .When(pulses, "only electric.waveform: pulses has it")
+           .Store([](Scene& s, const SceneValue& v) { s.electric.pulse_width = v.number; }),
+       NumberKey("electric.pulse_period", LeftOpen(0.0, 1e6), "t",
+                 "pulses: the time from one pulse's start to the next's (>= pulse_width)")
+           .Required()
+           .When(pulses, "only electric.waveform: pulses has it")
+           .Store([](Scene& s, const SceneValue& v) { s.electric.pulse_period = v.number; }),
+       IntegerKey("electric.pulse_count", 0, 1000000000, "1",
+                  "pulses: how many (0: a train without end)")
+           .Default(0)
+           .When(pulses, "only electric.waveform: pulses has it")
+           .Store([](Scene& s, const SceneValue& v) {
+             s.electric.pulse_count = static_cast<int>(v.number);
+           }),
        NumberKey("sigma_r", Closed(1e-4, 1e4), "1",
                  "conductivity ratio sigma- / sigma+ (inside / outside)")
            .Required()
@@ -657,6 +706,12 @@ SceneModule ElectricModule(const CoreConditions& c) {
         if (s.electric_field && s.Ca_E > s.electric.max_ca_e) {
           fail("'Ca_E' = " + FormatNumber(s.Ca_E) + " is out of range: accepted [0, " +
                FormatNumber(s.electric.max_ca_e) + "] (electric.max_Ca_E)");
+        }
+        if (s.electric.waveform == FieldWaveform::kPulses &&
+            s.electric.pulse_width > s.electric.pulse_period) {
+          fail(
+              "'electric.pulse_width' = " + FormatNumber(s.electric.pulse_width) +
+              " is longer than 'electric.pulse_period' = " + FormatNumber(s.electric.pulse_period));
         }
       }};
 }

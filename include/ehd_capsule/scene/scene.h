@@ -60,8 +60,19 @@ struct SceneGeometry {
   double center_z = 0.0;  // 3D only
 };
 
+// The applied field's time dependence E(t) = E f(t), E the amplitude from Ca_E (issue #45 item 5):
+// kDc f = 1; kAc f = offset + cos(2 pi frequency t + phase); kPulses f = 1 during the first
+// pulse_width of each pulse_period (from t = 0), 0 otherwise, for pulse_count pulses (0: no end).
+enum class FieldWaveform { kDc, kAc, kPulses };
+
 struct SceneElectric {
   double max_ca_e = 5.0;  // SetCaE accepts [0, max_ca_e]
+  FieldWaveform waveform = FieldWaveform::kDc;
+  double frequency = 0;  // kAc: cycles per unit of time (1/k with shear, else mu a / T)
+  double phase = 0;      // kAc: radians
+  double offset = 0;     // kAc: the DC part, in units of the amplitude
+  double pulse_width = 0, pulse_period = 0;  // kPulses: in units of time
+  int pulse_count = 0;                       // kPulses: 0 for no end
 };
 
 struct SceneNumerics {

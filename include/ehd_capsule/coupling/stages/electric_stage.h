@@ -7,7 +7,9 @@
 // Departure from the text: the potential may be re-solved less often than every step
 // (numerics.electric_every; numerics.electric_move_tolerance), reusing the force at the
 // (material) points in between; in 3D moves that keep the surface within
-// numerics.electric_shape_tolerance of the solved one re-interpolate the solved traction.
+// numerics.electric_shape_tolerance of the solved one re-interpolate the solved traction. A field
+// that changes in time (electric.waveform) scales the last solve's force by (E(t) / E_solved)^2
+// between solves (exact for the quasi-static leaky dielectric, whose G is linear in E).
 #pragma once
 
 #include <memory>
@@ -47,6 +49,11 @@ class ElectricStage : public StepStage {
   // the solved surface, barycentric weights) and returns true; otherwise returns false at the
   // first vertex beyond it, the forces untouched (a re-solve follows).
   bool ReinterpolateTraction(double tolerance);
+  // A time-dependent field (electric.waveform ac, pulses): the force source as set at `field`
+  // (a solve or a re-interpolation) is kept as the base that later strengths scale, by
+  // (E / field)^2, until the next solve.
+  void KeepBase(double field);
+  void ScaleBase(double field);
 
   const Scene& scene_;
   StepData<D>& data_;
@@ -55,7 +62,9 @@ class ElectricStage : public StepStage {
   std::unique_ptr<typename DimensionTraits<D>::Electric> solver_;
   PointsOf<D> positions_at_last_solve_;  // at the last force update (solve or re-interpolation)
   long last_solve_step_ = -1;
-  double solved_field_ = -1.0;  // |E| of the last solve
+  double solved_field_ = -1.0;             // E of the last solve
+  PointsOf<D> base_load_, base_traction_;  // time-dependent field: at base_field_
+  double base_field_ = 0.0;
   // 3D, numerics.electric_shape_tolerance > 0: the surface and traction of the last solve.
   PointsOf<D> solved_positions_, solved_traction_;
   std::unique_ptr<SurfaceProjector> projector_;  // of the solved surface, rebuilt on demand
