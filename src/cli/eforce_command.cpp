@@ -134,17 +134,16 @@ int RunEforce(const std::vector<std::string>& args) {
     }
   }
   if (!(sigma_r > 0) || !(eps_r > 0)) throw UsageError("ratios must be > 0");
-  if (dim == 3) {
-    if (!ratios_given) {
-      sigma_r = 1.75;  // song2019 ch. 6, case A
-      eps_r = 3.5;
-    }
-    if (sigma_r > 1000.0) {
-      throw UsageError("--sigma-ratio " + std::to_string(sigma_r) +
-                       ": the 3D solver accepts at most 1000 (max_inner_ratio)");
-    }
-    return RunEforce3D(sigma_r, eps_r);
+  if (dim == 3 && !ratios_given) {
+    sigma_r = 1.75;  // song2019 ch. 6, case A
+    eps_r = 3.5;
   }
+  if (sigma_r > InterfaceSolverOptions<2>().max_inner_ratio) {
+    throw UsageError(
+        "--sigma-ratio " + std::to_string(sigma_r) + ": the interface solver accepts at most " +
+        std::to_string(InterfaceSolverOptions<2>().max_inner_ratio) + " (max_inner_ratio)");
+  }
+  if (dim == 3) return RunEforce3D(sigma_r, eps_r);
   int it_ref = 0;
   double ms_ref = 0;
   const Eigen::Matrix2Xd ref = ForceFor(512, sigma_r, eps_r, &it_ref, &ms_ref);

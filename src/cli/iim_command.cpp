@@ -264,7 +264,7 @@ struct Iim2DOptions {
   double gmres_tolerance = -1.0;  // -1: the solver's default
   double marker_spacing = -1.0;   // in h; -1: the example's default (about 2 h)
   double control_spacing = -1.0;  // FastIimOptions::min_control_spacing_h; -1: its default
-  double wavelength = -1.0;       // FastIimOptions::fourier_wavelength_h; -1: its default
+  double wavelength = -1.0;       // FastIimOptions::basis_wavelength_h; -1: its default
 };
 
 Iim2DOptions ParseIim2D(const std::vector<std::string>& args) {
@@ -336,10 +336,11 @@ InterfaceSolveReport SolveOneGrid(const Iim2DOptions& o, const InterfaceExample&
     if (o.deferred >= 0) options.deferred_correction = o.deferred == 1;
     if (o.gmres_tolerance > 0.0) options.gmres.tolerance = o.gmres_tolerance;
     if (o.control_spacing > 0.0) options.min_control_spacing_h = o.control_spacing;
-    if (o.wavelength >= 0.0) options.fourier_wavelength_h = o.wavelength;
+    if (o.wavelength >= 0.0) options.basis_wavelength_h = o.wavelength;
     if (!o.checks) {
       options.max_curvature_h = options.max_marker_oscillation = options.verify_min_ratio =
-          std::numeric_limits<double>::infinity();
+          options.max_fit_disagreement = options.max_inner_ratio =
+              std::numeric_limits<double>::infinity();
     }
     FastIimSolver solver(grid, PoissonBoundaries{}, options);
     std::vector<double> g;
@@ -460,16 +461,17 @@ const CommandRegistration kIim(
      "--markers defaults to a marker spacing of about 2 h of arc length; --marker-spacing S\n"
      "sets it to about S h.\n"
      "The fast IIM refuses a grid that does not resolve the curve or whose answer it cannot\n"
-     "verify (FastIimOptions: max_curvature_h, max_marker_oscillation, verify_min_ratio; the\n"
-     "row says why, the exit status is then 1); 'est. error' is its a-posteriori estimate of the\n"
-     "relative error of [phi_n] (sigma-/sigma+ >= 10). --no-checks turns the checks off to\n"
+     "verify (FastIimOptions: max_curvature_h, max_marker_oscillation, max_fit_disagreement,\n"
+     "max_inner_ratio, verify_min_ratio, and a curve thinner than h; the row says why, the exit\n"
+     "status is then 1); 'est. error' is its a-posteriori estimate of the relative error of\n"
+     "[phi_n] (sigma-/sigma+ >= 10). --no-checks turns the checks with a threshold off to\n"
      "measure the bare discretisation.\n"
      "--[no-]deferred-correction: re-solve with the 5-point truncation T estimated from the\n"
      "first solution (FastIimOptions / CorrectionFunctionOptions::deferred_correction; default\n"
      "on for both).\n"
      "'G error': max |[phi_n] - exact| at the markers relative to max(|[phi_n]|, |phi_n|).\n"
      "--fourier-wavelength H: the shortest wavelength, in h, of the Fourier basis of [phi_n]\n"
-     "for sigma-/sigma+ >= 10 (FastIimOptions::fourier_wavelength_h, default 5; 0: as many\n"
+     "for sigma-/sigma+ >= 10 (FastIimOptions::basis_wavelength_h, default 5; 0: as many\n"
      "terms as controls); --control-spacing H: FastIimOptions::min_control_spacing_h (1.5).\n"
      "\n"
      "usage: ehd_sim iim --dim 3 [--example sphere_field|sphere|ellipsoid|biconcave]\n"
@@ -485,7 +487,7 @@ const CommandRegistration kIim(
      "'fit dis.', the cubic/quadratic disagreement the solver checks; GMRES iterations, ms per\n"
      "solve, Poisson solves per solve and the time of one Poisson solve of that size; 'L', the\n"
      "degree of the spherical-harmonic basis of [phi_n] (sigma-/sigma+ above\n"
-     "harmonic_basis_min_ratio = 10; 0: vertex values) and 'flux err', the flux balance's\n"
+     "basis_min_ratio = 10; 0: vertex values) and 'flux err', the flux balance's\n"
      "quadrature error estimate relative to max |[phi_n]|.\n"
      "--warm: re-solve with the surface moved by 0.01 h from the previous G.\n"
      "A refused solve (unresolved surface, sigma-/sigma+ > max-inner-ratio, failed checks) is\n"

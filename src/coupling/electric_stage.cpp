@@ -24,8 +24,12 @@ ElectricStage<D>::ElectricStage(const Scene& scene, const LatticeUnits& units, c
   const std::string unresolved =
       WaveformResolutionProblem(scene.electric, scene.has_shear() ? units.shear_rate : units.dt);
   if (!unresolved.empty()) throw SceneError("scene " + scene.name + ": " + unresolved);
+  typename DimensionTraits<D>::Electric::Options options;
+  // electric.max_fit_disagreement, when given (absent: the solver's default).
+  const auto limit = scene.values.find("electric.max_fit_disagreement");
+  if (limit != scene.values.end()) options.max_fit_disagreement = limit->second.number;
   solver_ = std::make_unique<typename DimensionTraits<D>::Electric>(
-      grid, units.sigma_minus, units.sigma_plus, units.eps_minus, units.eps_plus);
+      grid, units.sigma_minus, units.sigma_plus, units.eps_minus, units.eps_plus, options);
   if constexpr (D == 2) {
     data.on_points_resampled.push_back(
         [this](int, const typename StepData<D>::Resample& resample) { Resampled(resample); });

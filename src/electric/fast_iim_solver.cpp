@@ -11,11 +11,20 @@
 #include <string>
 
 #include "ehd_capsule/electric/box_face_check.h"
+#include "ehd_capsule/electric/interface_guarantees.h"
 #include "ehd_capsule/electric/jump_relations.h"
 #include "ehd_capsule/geometry/gauss_legendre.h"
 
 namespace ehd {
 namespace {
+
+constexpr const char* kSolverName = "FastIimSolver";
+
+std::string Point(const ClosedCurve& curve, int k) {
+  std::ostringstream o;
+  o << "marker " << k << " (" << curve.markers()(0, k) << ", " << curve.markers()(1, k) << ")";
+  return o.str();
+}
 
 // Primitive of clamp(t, 0, 1).
 double ClampPrimitive(double t) { return t < 0.0 ? 0.0 : (t <= 1.0 ? 0.5 * t * t : t - 0.5); }
@@ -361,17 +370,16 @@ void FastIimSolver::ChooseUnknowns(const ClosedCurve& curve) {
   // controls above would have; the residual is projected on the same basis with the arc
   // weights (Galerkin). The span does not depend on which marker is first nor on the marker
   // direction (s -> s + c rotates each cos/sin pair, s -> P - s flips the sines).
-  const bool by_wavelength = sigma_minus_ >= options_.fourier_basis_min_ratio * sigma_plus_ &&
-                             options_.fourier_wavelength_h > 0.0;
+  const bool by_wavelength =
+      sigma_minus_ >= options_.basis_min_ratio * sigma_plus_ && options_.basis_wavelength_h > 0.0;
   fourier_ = options_.control_basis == ControlBasis::kFourier &&
              (static_cast<int>(control_.size()) < m || by_wavelength);
   unknowns_ = static_cast<int>(control_.size());
   if (fourier_) {
     const int k_max =
         by_wavelength
-            ? std::max(2,
-                       std::min(static_cast<int>(perimeter_ / (options_.fourier_wavelength_h * h)),
-                                (m - 1) / 2))
+            ? std::max(2, std::min(static_cast<int>(perimeter_ / (options_.basis_wavelength_h * h)),
+                                   (m - 1) / 2))
             : std::max(2, (unknowns_ - 1) / 2);
     unknowns_ = 2 * k_max + 1;
     basis_.resize(m, unknowns_);
@@ -499,7 +507,10 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
   poisson_solves_ = 0;
   sigma_minus_ = problem.sigma_minus;
   sigma_plus_ = problem.sigma_plus;
+  CheckInnerRatio(kSolverName, sigma_minus_, sigma_plus_, options_.max_inner_ratio);
   CheckResolution(curve);
+  const GridDoubleCrossing<2> thin = FindMultipleCrossing(grid, curve);
+  if (thin.found) ThrowThinPart(kSolverName, "curve", thin, grid.h);
 
   SetUpBand(curve, problem);
 
@@ -518,31 +529,29 @@ InterfaceSolveReport FastIimSolver::Solve(const ClosedCurve& curve, const Interf
   }
   SolveForPotential(curve, g.data(), true, phi);
   fit_.Evaluate(phi.data(), band_jump_.data(), dn_minus_.data(), dt_minus_.data());
+  // The lower-degree fit's phi_n^-, kept as its difference from the fit's (ImposeInteriorFlux
+  // shifts both alike).
+  dn_check_.resize(m);
+  fit_.EvaluateNormalCheck(phi.data(), band_jump_.data(), dn_check_.data());
+  for (int k = 0; k < m; ++k) dn_check_[k] -= dn_minus_[k];
   ImposeInteriorFlux(interior_flux_);
   for (int k = 0; k < m; ++k) {
     dn_plus_[k] = dn_minus_[k] + g[k];
     dt_plus_[k] = dt_minus_[k] + w_s_[k];
+    dn_check_[k] += dn_minus_[k];
   }
-  if (sigma_plus_ != sigma_minus_) {
-    CheckMarkerOscillation(curve, g);
-    if (sigma_minus_ >= options_.verify_min_ratio * sigma_plus_) {
-      report.estimated_error = Verify(curve, problem, g);
-    }
+  marker_oscillation_ = 0.0;
+  if (sigma_plus_ != sigma_minus_) CheckMarkerOscillation(curve, g);
+  fit_disagreement_ =
+      CheckFitAgreement(kSolverName, dn_minus_, dn_check_, g, options_.max_fit_disagreement,
+                        [&](int k) { return Point(curve, k); });
+  if (sigma_plus_ != sigma_minus_ && sigma_minus_ >= options_.verify_min_ratio * sigma_plus_) {
+    report.estimated_error = Verify(curve, problem, g);
   }
   report.solve_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return report;
 }
-
-namespace {
-
-std::string Point(const ClosedCurve& curve, int k) {
-  std::ostringstream o;
-  o << "marker " << k << " (" << curve.markers()(0, k) << ", " << curve.markers()(1, k) << ")";
-  return o.str();
-}
-
-}  // namespace
 
 // Four markers per full turn of the local curvature: the periodic spline through them still
 // places the curve within ~1% of the curvature radius.
@@ -608,36 +617,27 @@ void FastIimSolver::CheckResolution(const ClosedCurve& curve) const {
   }
 }
 
-void FastIimSolver::CheckMarkerOscillation(const ClosedCurve& curve,
-                                           const std::vector<double>& g) const {
+void FastIimSolver::CheckMarkerOscillation(const ClosedCurve& curve, const std::vector<double>& g) {
   const int m = curve.size();
   double scale = 0.0;
+  scratch_.resize(m);
   for (int k = 0; k < m; ++k) {
     scale = std::max({scale, std::abs(g[k]), std::abs(dn_plus_[k]), std::abs(dn_minus_[k])});
-  }
-  if (!(scale > 0.0)) return;
-  int worst = 0;
-  double worst_value = 0.0;
-  for (int k = 0; k < m; ++k) {
     // Fourth difference / 16 along the markers: the marker-scale part of G (a smooth G gives
     // (dl)^4 G'''' / 16; a spike of size s at one marker gives 3 s / 8).
     const double d4 = g[(k + m - 2) % m] - 4.0 * g[(k + m - 1) % m] + 6.0 * g[k] -
                       4.0 * g[(k + 1) % m] + g[(k + 2) % m];
-    const double value = std::abs(d4) / 16.0;
-    if (value > worst_value) {
-      worst_value = value;
-      worst = k;
-    }
+    scratch_[k] = std::abs(d4) / 16.0;
   }
-  if (!std::isfinite(worst_value) || worst_value > options_.max_marker_oscillation * scale) {
-    std::ostringstream msg;
-    msg << "FastIimSolver: [phi_n] oscillates at the marker scale at " << Point(curve, worst)
-        << ": " << worst_value << " = " << worst_value / scale << " of max(|[phi_n]|, |phi_n|) "
-        << "> max_marker_oscillation = " << options_.max_marker_oscillation
-        << " (curvature radius there " << 1.0 / std::abs(curve.AtMarker(worst).curvature) / grid().h
-        << " h); the interface is not resolved: refine the grid (N)";
-    throw SolverError(msg.str());
-  }
+  marker_oscillation_ = CheckPointOscillation(
+      kSolverName, "marker", scratch_, scale, options_.max_marker_oscillation,
+      [&](int k) { return Point(curve, k); },
+      [&](int k) {
+        std::ostringstream o;
+        o << " (curvature radius there " << 1.0 / std::abs(curve.AtMarker(k).curvature) / grid().h
+          << " h)";
+        return o.str();
+      });
 }
 
 double FastIimSolver::Verify(const ClosedCurve& curve, const InterfaceProblem& problem,

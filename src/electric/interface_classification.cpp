@@ -2,6 +2,7 @@
 // near the interface (see interface_classification.h).
 #include "ehd_capsule/electric/interface_classification.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -156,6 +157,59 @@ void InterfaceClassification::Update(const Grid2D& grid, const ClosedCurve& curv
       irregular_points_.push_back(idx);
     }
   }
+}
+
+GridDoubleCrossing<2> FindMultipleCrossing(const Grid2D& grid, const ClosedCurve& curve) {
+  const double h = grid.h;
+  // The spline sampled at <= h/4 of arc per segment (the chords' sagitta is kappa (h/4)^2 / 8).
+  std::vector<Eigen::Vector2d> p;
+  const int m = curve.size();
+  for (int k = 0; k < m; ++k) {
+    const double s0 = curve.knot(k);
+    const double s1 = k + 1 < m ? curve.knot(k + 1) : curve.period();
+    const int pieces =
+        std::max(1, static_cast<int>(std::ceil(curve.SegmentArcLength(k) / (0.25 * h))));
+    for (int q = 0; q < pieces; ++q) {
+      const double s = s0 + (s1 - s0) * q / pieces;
+      p.emplace_back(curve.x_spline().Value(s), curve.y_spline().Value(s));
+    }
+  }
+  GridDoubleCrossing<2> out;
+  const int n = static_cast<int>(p.size());
+  for (int axis = 0; axis < 2; ++axis) {
+    // Lines along `axis` through the cell centres of the other axis b; a chord crosses line j
+    // where (a_j = coordinate(b, j)) lies between its ends (half-open, so a sample on a line
+    // counts once); |cos| between the line and the chord's normal = |chord_b| / |chord|.
+    const int b = 1 - axis;
+    const int lines = grid.extent(b);
+    std::vector<std::vector<std::pair<double, double>>> crossings(lines);
+    for (int q = 0; q < n; ++q) {
+      const Eigen::Vector2d& a0 = p[q];
+      const Eigen::Vector2d& a1 = p[q + 1 < n ? q + 1 : 0];
+      const double lo = std::min(a0[b], a1[b]), hi = std::max(a0[b], a1[b]);
+      const int j0 = std::max(0, static_cast<int>(std::ceil((lo - grid.origin(b)) / h - 0.5)));
+      const int j1 =
+          std::min(lines - 1, static_cast<int>(std::floor((hi - grid.origin(b)) / h - 0.5)));
+      const double length = (a1 - a0).norm();
+      for (int j = j0; j <= j1; ++j) {
+        const double c = grid.coordinate(b, j);
+        if ((a0[b] < c) == (a1[b] < c)) continue;
+        const double t = a0[axis] + (c - a0[b]) / (a1[b] - a0[b]) * (a1[axis] - a0[axis]);
+        crossings[j].emplace_back(t, std::abs(a1[b] - a0[b]) / length);
+      }
+    }
+    for (int j = 0; j < lines; ++j) {
+      const LineDoubleCrossing c =
+          ClosestDoubleCrossing(crossings[j], grid.origin(axis), h, grid.extent(axis));
+      if (!c.found || (out.found && c.gap_h >= out.gap_h)) continue;
+      out.found = true;
+      out.axis = axis;
+      out.gap_h = c.gap_h;
+      out.node[axis] = c.node;
+      out.node[b] = j;
+    }
+  }
+  return out;
 }
 
 }  // namespace ehd

@@ -29,7 +29,7 @@ struct FieldGeometry<2> {
     problem.boundary.y_min.assign(g.nx, e * g.y0);
     problem.boundary.y_max.assign(g.nx, e * g.y_max());
   }
-  // A new field scales |b|: the 2D solver's warm-start reference is forgotten.
+  // A new field scales |b|: the solver's warm-start reference is forgotten.
   static void FieldChanged(FastIimSolver& iim) { iim.ResetWarmStart(); }
   // F_E = [M_E] . n per unit length (eq. (148)), with each side's E_tau (continuous for
   // [phi] = 0; with a jump w, E_tau^+ = E_tau^- - w').
@@ -73,7 +73,8 @@ struct FieldGeometry<3> {
     problem.boundary.y_min.assign(static_cast<std::size_t>(g.nx) * g.nz, 0.0);
     problem.boundary.y_max.assign(static_cast<std::size_t>(g.nx) * g.nz, 0.0);
   }
-  static void FieldChanged(FastIimSolver3D&) {}  // no solve-history state
+  // As in 2D (the warm-start reference of InterfaceSolverOptions::warm_start_refresh).
+  static void FieldChanged(FastIimSolver3D& iim) { iim.ResetWarmStart(); }
   // [M_E] . n per unit area, times the vertex area for the force per vertex.
   static void Force(const FastIimSolver3D& iim, const TriangleMesh& surface, double eps_minus,
                     double eps_plus, const std::vector<double>& en_minus,

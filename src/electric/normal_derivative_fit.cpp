@@ -69,6 +69,7 @@ void NormalDerivativeFit::Update(const ClosedCurve& curve, const InterfaceClassi
   plus_slot_.clear();
   gamma_xi_.clear();
   gamma_eta_.clear();
+  gamma_check_.clear();
   weight_.clear();
   side_value_.clear();
   side_dxi_.clear();
@@ -135,6 +136,7 @@ void NormalDerivativeFit::Update(const ClosedCurve& curve, const InterfaceClassi
     // Rows 1 and 2 of (A^T W A)^{-1} A^T W (cubic if possible, else quadratic), then undo the
     // h scaling of xi and eta.
     Eigen::MatrixXd rows;
+    int used_terms = 0;
     for (int terms : {10, 6}) {
       if (terms == 10 && degree < 3) continue;
       if (count < (terms == 10 ? 14 : 6)) continue;  // cubic: keep it overdetermined
@@ -160,15 +162,29 @@ void NormalDerivativeFit::Update(const ClosedCurve& curve, const InterfaceClassi
       Eigen::LDLT<Eigen::MatrixXd> ldlt(normal);
       if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-12) continue;
       rows = ldlt.solve(a.transpose() * wt.asDiagonal());
+      used_terms = terms;
       break;
     }
     if (rows.rows() == 0) {
       throw std::runtime_error("NormalDerivativeFit: fit at marker " + std::to_string(k) +
                                " is rank deficient (" + std::to_string(count) + " points)");
     }
+    // The check rows (FastIimSolver's fit-agreement guarantee): the quadratic's xi-row beside
+    // the cubic (its normal matrix is the cubic's leading 6 x 6 block); without the cubic, the
+    // quadratic is the fit and its own check.
+    Eigen::VectorXd check = rows.row(1).transpose();
+    if (used_terms == 10) {
+      const Eigen::MatrixXd quadratic = a.leftCols(6);
+      Eigen::LDLT<Eigen::MatrixXd> ldlt(quadratic.transpose() * wt.asDiagonal() * quadratic);
+      if (ldlt.info() == Eigen::Success && ldlt.rcond() >= 1e-12) {
+        check = ldlt.solve(quadratic.transpose() * wt.asDiagonal()).row(1).transpose();
+      }
+    }
+    gamma_check_.resize(point_.size());
     for (int q = 0; q < count; ++q) {
       gamma_xi_[first + q] = rows(1, q) / h;
       gamma_eta_[first + q] = rows(2, q) / h;
+      gamma_check_[first + q] = check(q) / h;
     }
   }
   offset_[m] = static_cast<int>(point_.size());
@@ -198,6 +214,19 @@ void NormalDerivativeFit::EvaluateNormal(const double* phi, const double* band_j
     for (int q = offset_[k]; q < offset_[k + 1]; ++q) {
       const int slot = plus_slot_[q];
       dn += gamma_xi_[q] * (phi[point_[q]] - (slot >= 0 ? band_jump[slot] : 0.0));
+    }
+    dn_minus[k] = dn;
+  }
+}
+
+void NormalDerivativeFit::EvaluateNormalCheck(const double* phi, const double* band_jump,
+                                              double* dn_minus) const {
+  const int m = markers();
+  for (int k = 0; k < m; ++k) {
+    double dn = 0.0;
+    for (int q = offset_[k]; q < offset_[k + 1]; ++q) {
+      const int slot = plus_slot_[q];
+      dn += gamma_check_[q] * (phi[point_[q]] - (slot >= 0 ? band_jump[slot] : 0.0));
     }
     dn_minus[k] = dn;
   }

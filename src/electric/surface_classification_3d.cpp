@@ -158,8 +158,6 @@ SurfaceClassification3D ClassifyNodes(const Grid3D& g, const TriangleMesh& surfa
   return out;
 }
 
-constexpr double kHeadOnCosine = 0.5;
-
 MultipleCrossing FindMultipleCrossing(const Grid3D& g, const TriangleMesh& surface) {
   MultipleCrossing out;
   for (int axis = 0; axis < 3; ++axis) {
@@ -171,29 +169,14 @@ MultipleCrossing FindMultipleCrossing(const Grid3D& g, const TriangleMesh& surfa
       lines[line].emplace_back(t, cosine);
     });
     for (std::size_t line = 0; line < lines.size(); ++line) {
-      auto& t = lines[line];
-      if (t.size() < 2) continue;
-      std::sort(t.begin(), t.end());
-      for (std::size_t k = 0; k + 1 < t.size(); ++k) {
-        // Interval between nodes i and i + 1 along the axis (cell-centred coordinates).
-        const double s0 = (t[k].first - g.origin(axis)) / g.h - 0.5;
-        const double s1 = (t[k + 1].first - g.origin(axis)) / g.h - 0.5;
-        const int i = static_cast<int>(std::floor(s0));
-        if (i < 0 || i + 1 >= na || static_cast<int>(std::floor(s1)) != i) continue;
-        // A line grazing a curved sheet also crosses it twice within a cell, through a sliver
-        // much thinner than h that does no harm; a thin layer is crossed nearly head-on twice.
-        if (std::min(t[k].second, t[k + 1].second) < kHeadOnCosine) continue;
-        const double gap = (t[k + 1].first - t[k].first) / g.h;
-        if (out.found && gap >= out.gap_h) continue;
-        out.found = true;
-        out.axis = axis;
-        out.gap_h = gap;
-        int node[3];
-        node[axis] = i;
-        node[ua] = static_cast<int>(line % nu);
-        node[va] = static_cast<int>(line / nu);
-        out.node = {node[0], node[1], node[2]};
-      }
+      const LineDoubleCrossing c = ClosestDoubleCrossing(lines[line], g.origin(axis), g.h, na);
+      if (!c.found || (out.found && c.gap_h >= out.gap_h)) continue;
+      out.found = true;
+      out.axis = axis;
+      out.gap_h = c.gap_h;
+      out.node[axis] = c.node;
+      out.node[ua] = static_cast<int>(line % nu);
+      out.node[va] = static_cast<int>(line / nu);
     }
   }
   return out;

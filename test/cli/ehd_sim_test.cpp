@@ -101,6 +101,8 @@ TEST(EhdSim, ThreeDimensionalForceConverges) {
   EXPECT_TRUE(seen) << r.output;
   EXPECT_EQ(RunSim("eforce --dim 4").status, 2);
   EXPECT_EQ(RunSim("eforce --dim 3 --sigma-ratio 2000").status, 2);
+  // The inner-ratio cap holds in both dimensions (InterfaceSolverOptions::max_inner_ratio).
+  EXPECT_EQ(RunSim("eforce --sigma-ratio 2000").status, 2);
 }
 
 // `stability` on a 3D scene runs the 3D list; a case the 3D solver cannot run is refused at
@@ -120,6 +122,10 @@ TEST(EhdSim, ThreeDimensionalStabilityRefusesWhatItCannotRun) {
   EXPECT_NE(ratio.status, 0);
   EXPECT_NE(ratio.output.find("accepted [0.0001, 1000]"), std::string::npos) << ratio.output;
   EXPECT_EQ(r.output.find("V = 10"), std::string::npos) << r.output;  // a 2D-only case
+  // The same cap in 2D (one interface solver guarantee over the dimension).
+  const Result ratio_2d = RunSim("run shear_field --steps 1 --set sigma_r=2000");
+  EXPECT_NE(ratio_2d.status, 0);
+  EXPECT_NE(ratio_2d.output.find("accepted [0.0001, 1000]"), std::string::npos) << ratio_2d.output;
 }
 
 // `converge` on a 3D scene refines the mesh with the grid (icosphere level 3 at N = 24 and 32

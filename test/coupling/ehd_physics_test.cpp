@@ -39,13 +39,17 @@ Scene DropScene(double sigma_r) {
   return test::TinyScene(2).Name("ehd_drop").Drop().AtRest(1).Field(0.4, sigma_r).Grid(48).Build();
 }
 
+// The capsule has a = 4 cells: in the field its tips reach a curvature radius of ~1.5 h, where
+// the interface solver's fit-agreement check (cubic against quadratic phi_n^-) measures up to
+// 0.26 by t = 1.5 (0.12 on N = 48; second order), above the default 0.1 that refuses the
+// potential as unresolved there (it would stop the run at step 903). The test asks only for the
+// sign of the tilt, so it raises the limit rather than refine the grid (N = 64 would take
+// minutes).
 Scene CapsuleScene(double sigma_r, double ca_e) {
-  return test::TinyScene(2)
-      .Name("ehd_capsule")
-      .With("Ca", 0.04)
-      .With("Re", 0.05)
-      .Field(ca_e, sigma_r)
-      .Build();
+  test::TinyScene scene(2);
+  scene.Name("ehd_capsule").With("Ca", 0.04).With("Re", 0.05).Field(ca_e, sigma_r);
+  if (ca_e > 0) scene.With("electric.max_fit_disagreement", 0.3);
+  return scene.Build();
 }
 
 // Vorticity du_y/dx - du_x/dy integrated over x > 0, y > 0, r < 0.8 a (central differences).

@@ -259,7 +259,7 @@ TEST(FastIimSolver3D, VertexValuesStallAtThousandToOne) {
   const InterfaceExample3D& e = c.example;
   const InterfaceProblem3D& problem = c.problem;
   FastIim3DOptions options;
-  options.harmonic_basis_min_ratio = 1e4;  // vertex values
+  options.basis_min_ratio = 1e4;  // vertex values
   options.gmres.max_iterations = 200;
   FastIimSolver3D solver(grid, e.boundaries, options);
   std::vector<double> g, phi;

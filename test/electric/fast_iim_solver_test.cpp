@@ -430,7 +430,7 @@ TEST(FastIimSolver, MeanDeflationKeepsTheSolutionAndCutsIterationsForHighInnerCo
   plain.gmres.tolerance = deflated.gmres.tolerance = 1e-10;
   // G at every marker (no wavelength-limited Fourier basis, which already removes most of the
   // slow modes: 17 -> 15 iterations there), to see the deflation alone.
-  plain.fourier_wavelength_h = deflated.fourier_wavelength_h = 0.0;
+  plain.basis_wavelength_h = deflated.basis_wavelength_h = 0.0;
   // This N = 80 grid is coarse for the star at 1000:1 (the verification estimates 10%); the
   // test is about the deflation, so the verifying coarse solve is off.
   plain.verify_min_ratio = deflated.verify_min_ratio = std::numeric_limits<double>::infinity();
@@ -691,7 +691,7 @@ TEST(FastIimSolver, DenseMarkersGiveTheSameSolutionInEitherDirectionAndFromAnySt
   // sigma^- != sigma^+: on this star (sigma^+/sigma^- = 10, N = 80) the error was 2.5e-3 one
   // way and 8.2e-3 the other; now 5.4e-5 (sigma^+ > sigma^-) and 1.1e-3 (sigma^- > sigma^+; 5.6e-4
   // with as many terms as controls, 1.5 h, before the basis was limited to wavelengths >= 5 h at
-  // sigma^-/sigma^+ >= 10, FastIimOptions::fourier_wavelength_h: that basis stalls GMRES on
+  // sigma^-/sigma^+ >= 10, FastIimOptions::basis_wavelength_h: that basis stalls GMRES on
   // sharper curves).
   for (const double ratio : {0.1, 10.0}) {
     const InterfaceExample e = MakeInterfaceExample("star", ratio, 1.0);
@@ -820,7 +820,7 @@ TEST(FastIimSolver, VerificationOnlyAboveItsRatioAndRefusedWhereItCannotRun) {
 
 // sigma^- = 1000 sigma^+ on five-petal stars with troughs of curvature radius 2 h at the coarsest
 // grid (star_tight: 0.0245 = 2 h at N = 164; star_sharp, petals 0.4 of the mean radius: 0.0191 =
-// 2 h at N = 209): G in the Fourier basis of wavelengths >= 5 h (fourier_wavelength_h). Every
+// 2 h at N = 209): G in the Fourier basis of wavelengths >= 5 h (basis_wavelength_h). Every
 // solve passes the solver's own checks (resolution, oscillation, the verifying coarse solve),
 // [phi_n] is within the verification tolerance of the exact jump, converges at order >= 1.8, and
 // GMRES needs a bounded number of iterations. With as many terms as controls (the basis before),

@@ -40,6 +40,13 @@
 // adds the estimated 5-point truncation T = (h^2/12)(phi_xxxx + phi_yyyy) from a first solve
 // (AddTruncationCorrection), which makes the max error third order (not in the reference).
 //
+// Guarantees (FastIimOptions; the options and the dimension-free checks are shared with the 3D
+// solver: interface_solver_options.h, interface_guarantees.h): before solving, the inner-ratio
+// cap, the grid-scale curvature, the marker spacing, the box faces and no grid segment crossed
+// twice by the curve (a part thinner than h); after solving, the marker-scale oscillation of G,
+// the cubic/quadratic fit agreement of phi_n^- and, for sigma^-/sigma^+ >= verify_min_ratio,
+// the coarse-grid verification (2D only). docs/electric_solver.md, "Guarantees".
+//
 // Cost per Solve: classification and fit set-up O(M + band), then (iterations + 2) potential
 // solves, two Poisson solves each with the deferred correction (warm or cold, see
 // FastIimOptions::warm_start_refresh). Non-convergence throws SolverError.
@@ -55,6 +62,7 @@
 #include "ehd_capsule/electric/interface_classification.h"
 #include "ehd_capsule/electric/interface_problem.h"
 #include "ehd_capsule/electric/interface_schur_system.h"
+#include "ehd_capsule/electric/interface_solver_options.h"
 #include "ehd_capsule/electric/normal_derivative_fit.h"
 #include "ehd_capsule/geometry/closed_curve.h"
 
@@ -68,12 +76,23 @@ namespace ehd {
 // 0 (the previous method, kept for comparison).
 enum class ControlBasis { kFourier, kSplineControls };
 
-struct FastIimOptions {
-  GmresOptions gmres;
-  double fit_radius_h = 3.0;  // WLS fit radius alpha in units of h
-  // Degree of the WLS fit of phi_n^-: 3 (cubic, default: O(h^3) derivatives, see
-  // normal_derivative_fit.h) or 2 (the reference's quadratic).
-  int fit_degree = 3;
+// The shared settings (interface_solver_options.h: GMRES, the fit, the resolution checks, the
+// inner-ratio cap, the Fourier basis for sigma^-/sigma^+ >= basis_min_ratio, the fit-agreement
+// and oscillation checks, the warm start) and what only the curve solver has, because its
+// algorithm differs there: the closest-point band, the control markers, the optional mean
+// deflation (always on in 3D, where the basis needs it), the deferred correction (not carried to
+// 3D) and the coarse-grid verification (3D relies on its flux-balance estimate instead).
+//
+// Basis (InterfaceSolverOptions::basis_wavelength_h, 5 h here): at sigma^-/sigma^+ >=
+// basis_min_ratio (kFourier only) G is always sought in the Fourier basis, with the number of
+// terms set by its shortest wavelength, P / k_max >= basis_wavelength_h h (at most (M - 1) / 2
+// terms), as the 3D solver's harmonic basis. Below the ratio, or with basis_wavelength_h = 0, as
+// many terms as there are controls (every marker a control: no basis). Measured
+// (docs/electric_solver.md, "A much more conducting inside"): at 1000:1 the five-petal stars with
+// troughs of curvature radius 2 h need 15-19 GMRES iterations at every N with 5 h, where the
+// control count stalls GMRES (185 at N = 160, > 400 at N = 224) and 4 h already grows with N
+// (39-108).
+struct FastIimOptions : InterfaceSolverOptions<2> {
   double band_width_h = 3.5;  // closest points are found for |d| < band_width_h * h
   // sigma^- > sigma^+ only: GMRES unknowns live on control markers spaced >= this many h of
   // arc length (chosen walking along the curve, so bunched markers do not give close controls;
@@ -82,17 +101,6 @@ struct FastIimOptions {
   // the Schur system for sigma^- > sigma^+.
   double min_control_spacing_h = 1.5;
   ControlBasis control_basis = ControlBasis::kFourier;
-  // A much more conducting inside, sigma^-/sigma^+ >= fourier_basis_min_ratio (kFourier only):
-  // G is always sought in the Fourier basis, with the number of terms set by its shortest
-  // wavelength, P / k_max >= fourier_wavelength_h h (at most (M - 1) / 2 terms), as the 3D
-  // solver's harmonic basis (FastIim3DOptions::harmonic_wavelength_h). Below the ratio, or with
-  // fourier_wavelength_h = 0, as many terms as there are controls (every marker a control: no
-  // basis). Measured (docs/electric_solver.md, "A much more conducting inside"): at 1000:1 the
-  // five-petal stars with troughs of curvature radius 2 h need 15-19 GMRES iterations at every N
-  // with 5 h, where the control count stalls GMRES (185 at N = 160, > 400 at N = 224) and 4 h
-  // already grows with N (39-108).
-  double fourier_basis_min_ratio = 10.0;
-  double fourier_wavelength_h = 5.0;
   // sigma^- > sigma^+ only. The exact interior flux fixes the arc-weighted mean of the residual,
   // hence the mean of G (mu = (mean(v)/[sigma] - flux/P) / (sigma^+/[sigma])); the operator's
   // near-null mode (the equilibrium density of the curve, eigenvalue ~ -sigma^+/sigma^-, a
@@ -100,13 +108,6 @@ struct FastIimOptions {
   // solution, fewer iterations (star at sigma^-/sigma^+ = 1000: 19/18/16/15 -> 15/13/11/11 at
   // N = 40..320). false: the plain Schur system.
   bool deflate_mean = true;
-  // 0 (default): the tolerance is always relative to |b| = |R(0)| of the current problem (one
-  // Poisson solve), and an initial guess only shortens GMRES; the result depends only on
-  // (curve, problem, guess), so a checkpoint of G restarts bit for bit. > 0: with a guess,
-  // GMRES solves for the correction against |b| of the last cold solve (saves that Poisson
-  // solve); every warm_start_refresh-th warm solve is cold again. That |b| is solver state, so
-  // results then depend on the solve history (not restartable bit for bit from G alone).
-  int warm_start_refresh = 0;
   // Deferred correction of the regular 5-point truncation (AddTruncationCorrection), default
   // on: every potential solve for a given G becomes phi^1 = L_h^-1 (F + C), then
   // phi = L_h^-1 (F + C + T), T = (delta^4_x + delta^4_y) phi^1 / (12 h^2) with the values across
@@ -117,14 +118,9 @@ struct FastIimOptions {
   // solves per potential solve.
   bool deferred_correction = true;
   // Guarantees (no wrong answer returned as a success; each failure is a SolverError naming the
-  // marker, the quantity and the remedy):
-  // - before solving, every marker must have |kappa| h <= max_curvature_h (a tip tighter than
-  //   the grid cannot be represented by the jump expansion about one closest point) and
-  //   |kappa| l <= pi/2 over each marker segment l (markers too sparse for the curve), and
-  //   every marker at least min_face_distance_h * h inside the box's faces;
-  // - after solving, the marker-scale (index fourth-difference) content of G must stay below
-  //   max_marker_oscillation of max(|G|, |phi_n^+-|): a spike at a few markers is the signature
-  //   of an unresolved tip;
+  // marker, the quantity and the remedy), besides the shared ones (interface_guarantees.h):
+  // - before solving, besides max_curvature_h (the Menger curvature through the markers 1 h away
+  //   on each side), |kappa| l <= pi/2 over each marker segment l (markers too sparse);
   // - for sigma^-/sigma^+ >= verify_min_ratio, where the near-null mode of the Schur system
   //   (the curve's equilibrium density, eigenvalue -sigma^+/(sigma^- - sigma^+)) amplifies the
   //   discretisation error, a second solve on the grid coarsened twice (warm-started from G)
@@ -132,14 +128,6 @@ struct FastIimOptions {
   //   order); above verify_tolerance (relative to max(|G|, |phi_n^+-|)) Solve throws. The
   //   estimate is in InterfaceSolveReport::estimated_error. Costs ~1/4 of a solve. A grid that
   //   cannot be coarsened (odd or < 32 cells) cannot be verified: SolverError too.
-  double max_curvature_h = 1.0;
-  // Every marker at least this far (in h) inside the box's faces. Measured (test BoxFaceCheck.
-  // FastIimIsAccurateNearAFaceOrRefuses): the error of phi is that of a centred curve down to
-  // 0.75 h from a face; once the curve passes between the last cell centres and the face
-  // (< 0.5 h), whose ghost values the face's condition sets, it is O(1) (0.25 at 0.3 h from a
-  // Neumann face) and GMRES still converges. Twice that limit, as in 3D.
-  double min_face_distance_h = 1.0;
-  double max_marker_oscillation = 0.1;
   double verify_min_ratio = 10.0;  // infinity: never verify
   double verify_tolerance = 0.05;
 };
@@ -181,6 +169,11 @@ class FastIimSolver {
   void ResetWarmStart() { schur_.ResetWarmStart(); }
   // Number of Poisson solves in the last Solve().
   int poisson_solves() const { return poisson_solves_; }
+  // Of the last Solve(), relative to their scales (interface_guarantees.h): the largest
+  // cubic/quadratic disagreement of phi_n^- (InterfaceSolverOptions::max_fit_disagreement) and
+  // the largest marker-scale content of G (max_marker_oscillation; 0 for sigma^- = sigma^+).
+  double fit_disagreement() const { return fit_disagreement_; }
+  double marker_oscillation() const { return marker_oscillation_; }
 
  private:
   // The per-curve set-up of Solve: sides, band and crossing pairs, fit rows, F = f / sigma with
@@ -203,7 +196,7 @@ class FastIimSolver {
   // Resolution check before a solve (max_curvature_h, marker spacing); throws SolverError.
   void CheckResolution(const ClosedCurve& curve) const;
   // Marker-scale oscillation of g after a solve (max_marker_oscillation); throws SolverError.
-  void CheckMarkerOscillation(const ClosedCurve& curve, const std::vector<double>& g) const;
+  void CheckMarkerOscillation(const ClosedCurve& curve, const std::vector<double>& g);
   // Richardson estimate from a solve on the grid coarsened twice (verify_min_ratio); returns
   // the relative estimate (-1 if the grid cannot be coarsened), throws SolverError above
   // verify_tolerance.
@@ -248,6 +241,8 @@ class FastIimSolver {
   double perimeter_ = 0.0;
   double interior_flux_ = 0.0;  // integral of f^-/sigma^- over Omega^-
   int poisson_solves_ = 0;
+  std::vector<double> dn_check_;  // phi_n^- of the lower-degree fit (fit-agreement check)
+  double fit_disagreement_ = 0.0, marker_oscillation_ = 0.0;
   std::unique_ptr<FastIimSolver> coarse_;  // Verify(): the grid coarsened twice
   std::vector<double> coarse_g_, coarse_phi_;
 };

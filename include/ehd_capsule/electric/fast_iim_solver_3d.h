@@ -25,7 +25,7 @@
 // the surface are given by the caller (InterfaceProblem3D: the leaky dielectric has f = 0, so
 // only manufactured tests need them).
 //
-// A much more conducting inside (sigma^-/sigma^+ > harmonic_basis_min_ratio; not in the text).
+// A much more conducting inside (sigma^-/sigma^+ > basis_min_ratio; not in the text).
 // The map G -> phi_n^- has near-null modes there, and the Schur operator's eigenvalues on them are
 // about sigma^+/[sigma] (-1/999 at 1000:1), smaller than the discretisation error of phi_n^-, so
 // GMRES on the vertex values stalls and its answer would be O(1) wrong (measured: 100 % on the
@@ -38,7 +38,7 @@
 // the vertices from the centroid after the linear map that makes the volume's second moment
 // isotropic (geometry/radial_parametrisation.h: the surface must be star-shaped about its
 // centroid, else it is refused, naming a triangle seen edge-on or from behind). Degree L with
-// shortest wavelength 2 pi R / L >= harmonic_wavelength_h * h, solved in the Galerkin sense (the
+// shortest wavelength 2 pi R / L >= basis_wavelength_h * h, solved in the Galerkin sense (the
 // residual tested against each Y_lm with the vertex areas) where the 2D solver uses control
 // markers; (1) the flux balance: the surface integral of phi_n^- is that of f^-/sigma^- over the
 // inside (divergence theorem), so the area mean of every solution is mu = (mean(v)/[sigma] -
@@ -53,13 +53,18 @@
 // (InterfaceProblem3D::interior_source_integral). The estimate is reported (flux_balance_error())
 // and refused above max_flux_balance_error.
 //
-// Guarantees (SolverError naming the vertex or the quantity and the remedy): every vertex with
+// Guarantees (SolverError naming the vertex or the quantity and the remedy; the options and the
+// dimension-free checks are shared with the 2D solver: interface_solver_options.h,
+// interface_guarantees.h): sigma^-/sigma^+ <= max_inner_ratio; every vertex with
 // max(|kappa1|, |kappa2|) h <= max_curvature_h and at least min_face_distance_h * h inside the
-// box, every mesh edge <= max_edge_h * h (the jump data live on the vertices), every fit with
-// enough nodes; GMRES must converge; after the solve, the
-// cubic and the quadratic fits of phi_n^- must agree to max_fit_disagreement of max |phi_n| at
-// every vertex (where they do not, the potential varies on the grid scale near the surface and
-// the answer cannot be trusted).
+// box, every mesh edge <= max_edge_h * h (the jump data live on the vertices), no grid segment
+// crossed twice by the surface (a part thinner than h), every fit with enough nodes; GMRES must
+// converge; after the solve, for sigma^- != sigma^+, the vertex-scale content of G (squared graph
+// Laplacian) below max_marker_oscillation of max(|G|, |phi_n^+-|), and the cubic and the
+// quadratic fits of phi_n^- must agree to max_fit_disagreement of max |phi_n| at every vertex
+// (where they do not, the potential varies on the grid scale near the surface and the answer
+// cannot be trusted). The 2D solver's coarse-grid verification is not carried over (the flux
+// balance's quadrature estimate above is the 3D check at high ratios).
 #pragma once
 
 #include <Eigen/Core>
@@ -72,6 +77,7 @@
 #include "ehd_capsule/electric/gmres.h"
 #include "ehd_capsule/electric/interface_problem.h"
 #include "ehd_capsule/electric/interface_schur_system.h"
+#include "ehd_capsule/electric/interface_solver_options.h"
 #include "ehd_capsule/electric/surface_classification_3d.h"
 #include "ehd_capsule/geometry/local_surface_fit.h"
 #include "ehd_capsule/geometry/radial_parametrisation.h"
@@ -90,35 +96,21 @@ struct InterfaceProblem3D {
   std::vector<double> w, v;
   PoissonBoundaryData3D boundary;
   // The integral of f^-/sigma^- over the inside, for a much more conducting inside with f given
-  // (FastIim3DOptions::harmonic_basis_min_ratio; the flux balance needs it to better than the
+  // (FastIim3DOptions::basis_min_ratio; the flux balance needs it to better than the
   // inverse of the ratio, which a grid sum cannot give). NaN: not given.
   double interior_source_integral = std::numeric_limits<double>::quiet_NaN();
 };
 
-struct FastIim3DOptions {
-  GmresOptions gmres;
-  double fit_radius_h = 3.0;  // alpha of the normal-derivative fit, in h
-  int fit_degree = 3;         // 3 (cubic) or 2 (quadratic)
-  double max_curvature_h = 1.0;
+// The shared settings (interface_solver_options.h; here the basis is the spherical harmonics,
+// used above basis_min_ratio with shortest wavelength basis_wavelength_h = 4 h) and what only the
+// surface solver has: the mesh-edge limit (the jump data live on the vertices), the harmonic
+// degree cap, the flux balance's quadrature check (the 3D deflation's mean comes from a vertex
+// quadrature whose error the ratio amplifies) and the set-up's threads.
+struct FastIim3DOptions : InterfaceSolverOptions<3> {
   double max_edge_h = 2.0;
-  // Every vertex at least this far (in h) inside the box's faces. Measured (test
-  // SurfaceNearABoxFaceIsAccurateOrRefused): the error of phi is that of a centred surface down
-  // to 0.5 h from a face; closer, the surface passes between the last node layer and the face,
-  // whose ghost values the face's condition sets, and the answer is O(1) wrong (0.15 at 0.3 h
-  // from a Neumann face) with every other check passing. Twice that limit.
-  double min_face_distance_h = 1.0;
-  // sigma^-/sigma^+ above which the solve is refused.
-  double max_inner_ratio = 1000.0;
-  // sigma^-/sigma^+ above which G is sought in the spherical-harmonic basis with the flux balance
-  // deflated (the file comment); at or below it, G at every vertex.
-  double harmonic_basis_min_ratio = 10.0;
-  double harmonic_wavelength_h = 4.0;  // the basis' shortest wavelength, in h
-  int max_harmonic_degree = 48;        // and its largest degree
+  int max_harmonic_degree = 48;  // the harmonic basis' largest degree
   // Refused above: the flux balance's quadrature error estimate relative to max |G|.
   double max_flux_balance_error = 0.05;
-  // After the solve, phi_n^- from the quadratic fit must agree with the cubic's to this fraction
-  // of max |phi_n^+-| at every vertex (a resolution check of the potential near the surface).
-  double max_fit_disagreement = 0.1;
   // OpenMP threads of the set-up (the per-vertex fits and the band rows; <= 0: the OpenMP
   // default). The answer does not depend on it.
   int threads = 0;
@@ -165,6 +157,12 @@ class FastIimSolver3D {
   // The largest cubic/quadratic disagreement of phi_n^- of the last solve, relative to max
   // |phi_n^+-| (FastIim3DOptions::max_fit_disagreement).
   double fit_disagreement() const { return fit_disagreement_; }
+  // The largest vertex-scale content of G of the last solve relative to max(|G|, |phi_n^+-|)
+  // (InterfaceSolverOptions::max_marker_oscillation; 0 for sigma^- = sigma^+).
+  double point_oscillation() const { return point_oscillation_; }
+  // Forget |b| of the last cold solve (InterfaceSolverOptions::warm_start_refresh > 0 only); the
+  // next Solve() is cold.
+  void ResetWarmStart() { schur_.ResetWarmStart(); }
   // Of the last solve: the degree L of the harmonic basis (0: G at the vertices), and the flux
   // balance's quadrature error estimate relative to max |G| (0 without the basis).
   int harmonic_degree() const { return harmonic_degree_; }
@@ -202,6 +200,9 @@ class FastIimSolver3D {
   void SetUpFits(const TriangleMesh& surface);
   // Throws SolverError above max_fit_disagreement.
   void CheckFitAgreement(const std::vector<double>& phi, const std::vector<double>& g);
+  // Vertex-scale content of G (graph Laplacian squared); SolverError above
+  // max_marker_oscillation.
+  void CheckPointOscillation(const TriangleMesh& surface, const std::vector<double>& g);
   // J at the band nodes for G (and the data part when with_data).
   void BandJump(const double* g, bool with_data);
   // Solves for phi, then phi_n^- at the vertices into dn.
@@ -233,7 +234,8 @@ class FastIimSolver3D {
   std::vector<std::size_t> fit_node_;
   std::vector<int> fit_slot_;
   std::vector<double> fit_gamma_, fit_gamma_t1_, fit_gamma_t2_, fit_gamma_check_;
-  double fit_disagreement_ = 0;
+  double fit_disagreement_ = 0, point_oscillation_ = 0;
+  std::vector<double> dn_check_, laplacian_, point_content_;
   Eigen::Matrix3Xd fit_normal_, fit_t1_, fit_t2_;
   Eigen::Matrix3Xd tangent_minus_, tangent_plus_;
   std::vector<double> last_phi_side_jump_;  // J at the band nodes for the final G

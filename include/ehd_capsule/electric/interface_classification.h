@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "ehd_capsule/electric/interface_guarantees.h"
 #include "ehd_capsule/geometry/closed_curve.h"
 #include "ehd_capsule/geometry/grid.h"
 
@@ -68,5 +69,14 @@ class InterfaceClassification {
   std::vector<double> best_d2_, best_s_;
   std::vector<int> touched_;
 };
+
+// A grid segment (between two neighbouring cell centres along an axis) that the curve crosses
+// twice or more, nearly head-on (within 60 degrees of its normal): a part of the curve thinner
+// than h along that axis (a biconcave dimple), which the 5-point stencil cannot see (both points
+// on the same side). The curve is its periodic spline sampled at <= h/4 of arc (the crossings are
+// those of the chords, within ~kappa h^2 / 128 of the spline's). Of all such segments, the one
+// with the closest crossings; the 3D counterpart is in surface_classification_3d.h, the per-line
+// search shared (ClosestDoubleCrossing, interface_guarantees.h). O(M + P / h) for perimeter P.
+GridDoubleCrossing<2> FindMultipleCrossing(const Grid2D& grid, const ClosedCurve& curve);
 
 }  // namespace ehd

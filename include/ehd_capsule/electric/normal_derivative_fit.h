@@ -44,6 +44,9 @@ class NormalDerivativeFit {
                 double* dt_minus) const;
   // Same for the normal derivative only.
   void EvaluateNormal(const double* phi, const double* band_jump, double* dn_minus) const;
+  // phi_n^- from the fit one degree lower (the quadratic where the fit is the cubic; else the
+  // fit itself), for the fit-agreement check (interface_guarantees.h).
+  void EvaluateNormalCheck(const double* phi, const double* band_jump, double* dn_minus) const;
 
   // Weighted averages, over each side's fit points of every marker, of a grid field (an O(h)
   // estimate of its one-sided limits). Sides without points give 0.
@@ -66,7 +69,7 @@ class NormalDerivativeFit {
   std::vector<int> offset_;
   std::vector<int> point_;      // grid index
   std::vector<int> plus_slot_;  // band slot if the point is outside, -1 inside
-  std::vector<double> gamma_xi_, gamma_eta_, weight_;
+  std::vector<double> gamma_xi_, gamma_eta_, gamma_check_, weight_;
   // Rows of the one-sided fits: value and xi-derivative at the marker of the fit of the side
   // the point is on.
   std::vector<double> side_value_, side_dxi_;

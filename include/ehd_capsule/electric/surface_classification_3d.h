@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "ehd_capsule/electric/interface_guarantees.h"
 #include "ehd_capsule/geometry/grid.h"
 #include "ehd_capsule/geometry/triangle_mesh.h"
 
@@ -42,13 +43,9 @@ SurfaceClassification3D ClassifyNodes(const Grid3D& grid, const TriangleMesh& su
 // 7-point stencil cannot see (both nodes are on the same side) and the immersed interface
 // corrections cannot represent. Only crossings where the line is within 60 degrees of the
 // surface normal count (a line grazing a curved sheet crosses it twice within a cell through a
-// harmless sliver). Of all such segments, the one with the closest crossings.
-struct MultipleCrossing {
-  bool found = false;
-  int axis = -1;              // 0, 1, 2: x, y, z
-  std::array<int, 3> node{};  // the segment from node to node + e_axis
-  double gap_h = 0;           // distance between its two crossings, in h
-};
+// harmless sliver). Of all such segments, the one with the closest crossings (the per-line search
+// is the curve's too: ClosestDoubleCrossing, interface_guarantees.h).
+using MultipleCrossing = GridDoubleCrossing<3>;
 MultipleCrossing FindMultipleCrossing(const Grid3D& grid, const TriangleMesh& surface);
 
 }  // namespace ehd
