@@ -67,7 +67,11 @@ void DiagnosticsStage<D>::MeasureInto(const Shape& d, SimulationState& s) const 
       for (int k = 0; k < n; ++k) total += electric->load.col(k) * body.dl[k];
       s.electric_force_total = Eigen::Vector3d(total.x(), total.y(), 0.0);
     } else {
-      s.electric_force_total = electric->load.rowwise().sum();
+      // A plain loop: Eigen's vectorised reduction sums in an order that follows the array's
+      // alignment, which moved this near-zero total (a neutral drop's) by 1e-15 between builds.
+      Eigen::Vector3d total = Eigen::Vector3d::Zero();
+      for (int k = 0; k < n; ++k) total += electric->load.col(k);
+      s.electric_force_total = total;
     }
   } else {
     s.electric_force.resize(3, 0);
