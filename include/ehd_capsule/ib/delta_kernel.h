@@ -40,7 +40,7 @@ enum class DeltaKernel { kCosine4, kRoma3, kTrapezoid3, kRoma3EvenOdd };
 // throws std::invalid_argument otherwise.
 DeltaKernel ParseDeltaKernel(const std::string& name);
 
-// phi(r) for r = distance / h.
+// phi(r) for r = distance / h (roma3_even_odd: roma3's, its kernel across each component's axis).
 double DeltaKernelValue(DeltaKernel kernel, double r_over_h);
 
 // Fourier transform of the roma3 phi at xi = k h, int phi(r) cos(xi r) dr (1 at xi = 0): its
