@@ -2,8 +2,6 @@
 // product in 2 or 3 dimensions; see immersed_boundary.h.
 #include "ehd_capsule/ib/immersed_boundary.h"
 
-#include <algorithm>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -22,14 +20,15 @@ void CheckField(const Grid<D>& grid, const std::vector<double>& f, int component
 }
 
 // The point's stencil along one axis for the kernel, and its nodes per axis.
+// (roma3_even_odd: roma3's; the loops use trapezoid3's along each component's own axis.)
 template <DeltaKernel K>
 DeltaStencil AxisStencil(double xi) {
   if constexpr (K == DeltaKernel::kCosine4) {
     return CosineDeltaStencil(xi);
-  } else if constexpr (K == DeltaKernel::kRoma3) {
-    return Roma3DeltaStencil(xi);
-  } else {
+  } else if constexpr (K == DeltaKernel::kTrapezoid3) {
     return Trapezoid3DeltaStencil(xi);
+  } else {
+    return Roma3DeltaStencil(xi);
   }
 }
 template <DeltaKernel K>
@@ -66,7 +65,7 @@ void ImmersedBoundaryTransfer<D>::Interpolate(const std::array<const std::vector
       InterpolateWith<DeltaKernel::kTrapezoid3>(u, X, U);
       break;
     case DeltaKernel::kRoma3EvenOdd:
-      InterpolateEvenOdd(u, X, U);
+      InterpolateWith<DeltaKernel::kRoma3EvenOdd>(u, X, U);
       break;
     default:
       InterpolateWith<DeltaKernel::kCosine4>(u, X, U);
@@ -78,6 +77,7 @@ template <DeltaKernel K>
 void ImmersedBoundaryTransfer<D>::InterpolateWith(
     const std::array<const std::vector<double>*, D>& u, const Points& X, Points& U) const {
   constexpr int W = kWidth<K>;
+  constexpr bool kMixed = K == DeltaKernel::kRoma3EvenOdd;
   const Eigen::Index m = X.cols();
   if (U.cols() != m) U.resize(D, m);
   const double inv_h = 1.0 / grid_.h;
@@ -87,10 +87,19 @@ void ImmersedBoundaryTransfer<D>::InterpolateWith(
   for (int d = 0; d < D; ++d) up[d] = u[d]->data();
   for (Eigen::Index c = 0; c < m; ++c) {
     // Node i sits at origin + (i + 1/2) h, so the fractional node coordinate is (x - o)/h - 1/2.
-    DeltaStencil s[D];
+    DeltaStencil s[D], e[D];
     for (int a = 0; a < D; ++a) {
-      s[a] = AxisStencil<K>((X(a, c) - grid_.origin(a)) * inv_h - 0.5);
+      const double xi = (X(a, c) - grid_.origin(a)) * inv_h - 0.5;
+      s[a] = AxisStencil<K>(xi);
+      if constexpr (kMixed) e[a] = Trapezoid3DeltaStencil(xi);
     }
+    // Component d's weights along axis a: trapezoid3 along its own axis for roma3_even_odd.
+    auto wt = [&](int d, int a) -> const double* {
+      if constexpr (kMixed) {
+        if (d == a) return e[a].weight;
+      }
+      return s[a].weight;
+    };
     int ix[W];
     for (int a = 0; a < W; ++a) ix[a] = WrapIndex(s[0].first + a, nx, periodic_[0]);
     double total[D] = {};
@@ -110,12 +119,24 @@ void ImmersedBoundaryTransfer<D>::InterpolateWith(
         double in_row[D] = {};
         for (int a = 0; a < W; ++a) {
           if (ix[a] < 0) continue;
-          for (int d = 0; d < D; ++d) in_row[d] += s[0].weight[a] * up[d][row + ix[a]];
+          if constexpr (kMixed) {
+            for (int d = 0; d < D; ++d) in_row[d] += wt(d, 0)[a] * up[d][row + ix[a]];
+          } else {
+            for (int d = 0; d < D; ++d) in_row[d] += s[0].weight[a] * up[d][row + ix[a]];
+          }
         }
-        for (int d = 0; d < D; ++d) in_plane[d] += s[1].weight[b] * in_row[d];
+        if constexpr (kMixed) {
+          for (int d = 0; d < D; ++d) in_plane[d] += wt(d, 1)[b] * in_row[d];
+        } else {
+          for (int d = 0; d < D; ++d) in_plane[d] += s[1].weight[b] * in_row[d];
+        }
       }
       if constexpr (D == 3) {
-        for (int d = 0; d < D; ++d) total[d] += s[D - 1].weight[zc] * in_plane[d];
+        if constexpr (kMixed) {
+          for (int d = 0; d < D; ++d) total[d] += wt(d, D - 1)[zc] * in_plane[d];
+        } else {
+          for (int d = 0; d < D; ++d) total[d] += s[D - 1].weight[zc] * in_plane[d];
+        }
       } else {
         for (int d = 0; d < D; ++d) total[d] = in_plane[d];
       }
@@ -140,7 +161,7 @@ void ImmersedBoundaryTransfer<D>::Spread(const Points& X, const Points& F,
       SpreadWith<DeltaKernel::kTrapezoid3>(X, F, f);
       break;
     case DeltaKernel::kRoma3EvenOdd:
-      SpreadEvenOdd(X, F, f);
+      SpreadWith<DeltaKernel::kRoma3EvenOdd>(X, F, f);
       break;
     default:
       SpreadWith<DeltaKernel::kCosine4>(X, F, f);
@@ -152,6 +173,7 @@ template <DeltaKernel K>
 void ImmersedBoundaryTransfer<D>::SpreadWith(const Points& X, const Points& F,
                                              const std::array<std::vector<double>*, D>& f) const {
   constexpr int W = kWidth<K>;
+  constexpr bool kMixed = K == DeltaKernel::kRoma3EvenOdd;
   const double inv_h = 1.0 / grid_.h;
   double inv_volume = inv_h * inv_h;  // 1 / h^D
   if constexpr (D == 3) inv_volume *= inv_h;
@@ -160,9 +182,11 @@ void ImmersedBoundaryTransfer<D>::SpreadWith(const Points& X, const Points& F,
   double* __restrict fp[D];
   for (int d = 0; d < D; ++d) fp[d] = f[d]->data();
   for (Eigen::Index c = 0; c < X.cols(); ++c) {
-    DeltaStencil s[D];
+    DeltaStencil s[D], e[D];
     for (int a = 0; a < D; ++a) {
-      s[a] = AxisStencil<K>((X(a, c) - grid_.origin(a)) * inv_h - 0.5);
+      const double xi = (X(a, c) - grid_.origin(a)) * inv_h - 0.5;
+      s[a] = AxisStencil<K>(xi);
+      if constexpr (kMixed) e[a] = Trapezoid3DeltaStencil(xi);
     }
     int ix[W];
     for (int a = 0; a < W; ++a) ix[a] = WrapIndex(s[0].first + a, nx, periodic_[0]);
@@ -184,85 +208,26 @@ void ImmersedBoundaryTransfer<D>::SpreadWith(const Points& X, const Points& F,
         const std::size_t row = plane + static_cast<std::size_t>(j) * static_cast<std::size_t>(nx);
         // 2D: w = phi_x phi_y exactly as before; 3D: phi_x (phi_y phi_z).
         const double wyz = D == 3 ? s[1].weight[b] * wz : s[1].weight[b];
-        for (int a = 0; a < W; ++a) {
-          if (ix[a] < 0) continue;
-          const double w = s[0].weight[a] * wyz;
-          for (int d = 0; d < D; ++d) fp[d][row + ix[a]] += w * g[d];
+        if constexpr (kMixed) {
+          // Component d: trapezoid3 along axis d, roma3 along the others.
+          double wzd[D], wyzd[D];
+          for (int d = 0; d < D; ++d) {
+            wzd[d] = D == 3 ? (d == D - 1 ? e : s)[D - 1].weight[zc] : 1.0;
+            wyzd[d] = (d == 1 ? e : s)[1].weight[b] * wzd[d];
+          }
+          for (int a = 0; a < W; ++a) {
+            if (ix[a] < 0) continue;
+            for (int d = 0; d < D; ++d) {
+              fp[d][row + ix[a]] += (d == 0 ? e : s)[0].weight[a] * wyzd[d] * g[d];
+            }
+          }
+        } else {
+          for (int a = 0; a < W; ++a) {
+            if (ix[a] < 0) continue;
+            const double w = s[0].weight[a] * wyz;
+            for (int d = 0; d < D; ++d) fp[d][row + ix[a]] += w * g[d];
+          }
         }
-      }
-    }
-  }
-}
-
-// roma3_even_odd: component d's kernel is trapezoid3 along axis d and roma3 along the others
-// (delta_kernel.h). Both have 3 nodes with the same first node, so only the weights differ.
-template <int D>
-void ImmersedBoundaryTransfer<D>::ComponentWeights(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                                   int first[D], double w[D][D][3]) const {
-  for (int a = 0; a < D; ++a) {
-    const double xi = (x(a) - grid_.origin(a)) / grid_.h - 0.5;
-    const DeltaStencil roma = Roma3DeltaStencil(xi);
-    const DeltaStencil even_odd = Trapezoid3DeltaStencil(xi);
-    first[a] = roma.first;
-    for (int d = 0; d < D; ++d) {
-      for (int i = 0; i < 3; ++i) w[d][a][i] = (d == a ? even_odd : roma).weight[i];
-    }
-  }
-}
-
-template <int D>
-void ImmersedBoundaryTransfer<D>::InterpolateEvenOdd(
-    const std::array<const std::vector<double>*, D>& u, const Points& X, Points& U) const {
-  if (U.cols() != X.cols()) U.resize(D, X.cols());
-  for (Eigen::Index c = 0; c < X.cols(); ++c) {
-    int first[D];
-    double w[D][D][3];
-    ComponentWeights(X.col(c), first, w);
-    double total[D] = {};
-    for (int n = 0; n < (D == 3 ? 27 : 9); ++n) {
-      const int i[3] = {n % 3, (n / 3) % 3, n / 9};
-      std::size_t node = 0, stride = 1;
-      bool inside = true;
-      for (int a = 0; a < D; ++a) {
-        const int k = WrapIndex(first[a] + i[a], grid_.extent(a), periodic_[a]);
-        inside = inside && k >= 0;
-        node += static_cast<std::size_t>(std::max(k, 0)) * stride;
-        stride *= static_cast<std::size_t>(grid_.extent(a));
-      }
-      if (!inside) continue;
-      for (int d = 0; d < D; ++d) {
-        double weight = 1.0;
-        for (int a = 0; a < D; ++a) weight *= w[d][a][i[a]];
-        total[d] += weight * (*u[d])[node];
-      }
-    }
-    for (int d = 0; d < D; ++d) U(d, c) = total[d];
-  }
-}
-
-template <int D>
-void ImmersedBoundaryTransfer<D>::SpreadEvenOdd(
-    const Points& X, const Points& F, const std::array<std::vector<double>*, D>& f) const {
-  const double inv_volume = std::pow(grid_.h, -D);
-  for (Eigen::Index c = 0; c < X.cols(); ++c) {
-    int first[D];
-    double w[D][D][3];
-    ComponentWeights(X.col(c), first, w);
-    for (int n = 0; n < (D == 3 ? 27 : 9); ++n) {
-      const int i[3] = {n % 3, (n / 3) % 3, n / 9};
-      std::size_t node = 0, stride = 1;
-      bool inside = true;
-      for (int a = 0; a < D; ++a) {
-        const int k = WrapIndex(first[a] + i[a], grid_.extent(a), periodic_[a]);
-        inside = inside && k >= 0;
-        node += static_cast<std::size_t>(std::max(k, 0)) * stride;
-        stride *= static_cast<std::size_t>(grid_.extent(a));
-      }
-      if (!inside) continue;
-      for (int d = 0; d < D; ++d) {
-        double weight = inv_volume;
-        for (int a = 0; a < D; ++a) weight *= w[d][a][i[a]];
-        (*f[d])[node] += weight * F(d, c);
       }
     }
   }

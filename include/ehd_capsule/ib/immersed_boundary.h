@@ -74,13 +74,6 @@ class ImmersedBoundaryTransfer {
   template <DeltaKernel K>
   void SpreadWith(const Points& X, const Points& F,
                   const std::array<std::vector<double>*, D>& f) const;
-  // roma3_even_odd, whose weights differ per component.
-  void ComponentWeights(const Eigen::Ref<const Eigen::VectorXd>& x, int first[D],
-                        double w[D][D][3]) const;
-  void InterpolateEvenOdd(const std::array<const std::vector<double>*, D>& u, const Points& X,
-                          Points& U) const;
-  void SpreadEvenOdd(const Points& X, const Points& F,
-                     const std::array<std::vector<double>*, D>& f) const;
 };
 
 extern template class ImmersedBoundaryTransfer<2>;
