@@ -1,9 +1,10 @@
 // The explicit stability of a membrane mode in the immersed boundary coupling, measured with the
 // project's own classes (issue #42): a flat periodic membrane of M markers along x in a doubly
-// periodic nx x ny D2Q9 MRT box (LatticeBoltzmann2D, the coupling's relaxation rates and Guo
-// split-momentum forcing), spread and interpolated by ImmersedBoundaryTransfer<2> with the cosine
-// or the roma3 kernel, moved by PointAdvector<2> with dt = 1 in the coupling's stage order
-// (force -> spread -> LBM step -> interpolate -> advance, song2019 sec. 3.6).
+// periodic nx x ny D2Q9 MRT box (LatticeBoltzmann2D, the coupling's relaxation rates and
+// song2019's split-momentum forcing, or others by option), spread and interpolated by
+// ImmersedBoundaryTransfer<2> with the cosine, roma3 or trapezoid3 kernel, moved by
+// PointAdvector<2> with dt = 1 in the coupling's stage order (force -> spread -> LBM step ->
+// interpolate -> advance, song2019 sec. 3.6).
 //
 // The membrane's force is the linearised Hookean chain (MembraneModel's tension law about a
 // uniform state): the point force on marker c is S (d_{c+1} - 2 d_c + d_{c-1}) / dl along the
@@ -14,10 +15,11 @@
 // the mode excites (its grid aliases included). Stiffness is given as S dt / (mu h) (lattice
 // units, mu = rho nu).
 //
-// Usage: ib_membrane_modes_bench [--kernel cosine|roma3] [--nx N] [--ny N] [--markers M]
+// Usage: ib_membrane_modes_bench [--kernel cosine|roma3|trapezoid3|roma3_even_odd] [--nx N] [--ny
+// N] [--markers M]
 //          [--tau T] [--yoffset F] [--xoffset F] [--dir normal|tangential]
 //          [--integrator euler|ab2] [--steps N] [--mode m] [--stiffness S]
-//          [--threshold] [--scan]
+//          [--s_e R] [--s_eps R] [--s_q R] [--forcing split|guo] [--threshold] [--scan]
 //   --mode m --stiffness S : g for that mode and stiffness;
 //   --threshold            : the smallest S/mu at which mode m grows (g > 1), by bisection;
 //   --scan                 : the threshold of every mode m = 1 .. M/2, and the minimum.
@@ -43,12 +45,16 @@ constexpr double kPi = 3.141592653589793;
 
 struct Setup {
   ehd::DeltaKernel kernel = ehd::DeltaKernel::kCosine4;
+  std::string kernel_name = "cosine";
   int nx = 22, ny = 24, markers = 28;
   double tau = 1.0;
   double yoffset = 0.0, xoffset = 0.0;  // of the membrane from a node line / the first node, in h
   bool normal = false;
   bool ab2 = false;
   int steps = 3000;
+  // MRT rates of the non-hydrodynamic moments (LbmParameters' 2D defaults) and the forcing.
+  double s_e = 1.64, s_epsilon = 1.54, s_q = 1.9;
+  ehd::ForcingScheme forcing = ehd::ForcingScheme::kSplitMomentum;
 };
 
 // g per step for mode m at stiffness S / mu = s_over_mu.
@@ -59,6 +65,10 @@ double Amplification(const Setup& s, int m, double s_over_mu, int* dominant = nu
   p.viscosity = (s.tau - 0.5) / 3.0;
   p.boundary = ehd::FluidBoundary::kPeriodic;
   p.threads = 1;
+  p.s_e = s.s_e;
+  p.s_epsilon = s.s_epsilon;
+  p.s_q = s.s_q;
+  p.forcing = s.forcing;
   ehd::LatticeBoltzmann2D lbm(p);
   lbm.InitializeAtRest();
   const std::vector<double> rest = lbm.populations();
@@ -176,17 +186,21 @@ double Threshold(const Setup& s, int m, int* dominant) {
 void PrintLimits(const Setup& s, int m, double measured, int dominant) {
   const double h = 1.0, dl = s.nx * h / s.markers;
   const double k = 2.0 * kPi * m / s.nx;
-  const ehd::KernelTransform phi = s.kernel == ehd::DeltaKernel::kRoma3
-                                       ? ehd::KernelTransform(ehd::Roma3DeltaTransform)
-                                       : ehd::KernelTransform(ehd::CosineDeltaTransform);
+  const ehd::KernelTransform phi =
+      s.kernel == ehd::DeltaKernel::kRoma3 || s.kernel == ehd::DeltaKernel::kRoma3EvenOdd
+          ? ehd::KernelTransform(ehd::Roma3DeltaTransform)
+      : s.kernel == ehd::DeltaKernel::kTrapezoid3
+          ? ehd::KernelTransform(ehd::Trapezoid3DeltaTransform)
+          : ehd::KernelTransform(ehd::CosineDeltaTransform);
   const double euler = s.ab2 ? 1.0 : 2.0;
   // Old: sigma = S k phi^2 / (4 mu), the chain's k^2 taken as the continuous one.
   const double old_limit = euler * 4.0 / (k * std::pow(phi(k * h), 2));
   // New: the old one, and for a tangential mode the grid-Nyquist limit
   // (LatticeCompressionStep, AB2 convention: forward Euler twice it).
   const double mu = (s.tau - 0.5) / 3.0;
-  const double nyquist =
-      s.normal ? INFINITY : euler * ehd::LatticeCompressionStep(1.0, s.tau, h, dl, phi) / mu;
+  const double nyquist = s.normal || s.kernel == ehd::DeltaKernel::kRoma3EvenOdd
+                             ? INFINITY
+                             : euler * ehd::LatticeCompressionStep(1.0, s.tau, h, dl, phi) / mu;
   const double new_limit = std::min(old_limit, nyquist);
   std::printf("%3d %6.3f %10.4g %10.4g %6.3f %10.4g %6.3f %4d %6.3f\n", m, k * h, measured,
               old_limit, measured / old_limit, new_limit, measured / new_limit, dominant,
@@ -195,10 +209,11 @@ void PrintLimits(const Setup& s, int m, double measured, int dominant) {
 
 int Usage() {
   std::fprintf(stderr,
-               "usage: ib_membrane_modes_bench [--kernel cosine|roma3] [--nx N] [--ny N] "
+               "usage: ib_membrane_modes_bench [--kernel cosine|roma3|trapezoid3|roma3_even_odd] "
+               "[--nx N] [--ny N] "
                "[--markers M] [--tau T] [--yoffset F] [--xoffset F] [--dir normal|tangential] "
-               "[--integrator euler|ab2] [--steps N] [--mode m] [--stiffness S] [--threshold] "
-               "[--scan]\n");
+               "[--integrator euler|ab2] [--steps N] [--mode m] [--stiffness S] [--s_e R] "
+               "[--s_eps R] [--s_q R] [--forcing split|guo] [--threshold] [--scan]\n");
   return 2;
 }
 
@@ -213,7 +228,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     const bool has = i + 1 < argc;
     if (a == "--kernel" && has) {
-      s.kernel = ehd::ParseDeltaKernel(argv[++i]);
+      s.kernel_name = argv[++i];
+      s.kernel = ehd::ParseDeltaKernel(s.kernel_name);
     } else if (a == "--nx" && has) {
       s.nx = std::atoi(argv[++i]);
     } else if (a == "--ny" && has) {
@@ -236,6 +252,15 @@ int main(int argc, char** argv) {
       mode = std::atoi(argv[++i]);
     } else if (a == "--stiffness" && has) {
       stiffness = std::atof(argv[++i]);
+    } else if (a == "--s_e" && has) {
+      s.s_e = std::atof(argv[++i]);
+    } else if (a == "--s_eps" && has) {
+      s.s_epsilon = std::atof(argv[++i]);
+    } else if (a == "--s_q" && has) {
+      s.s_q = std::atof(argv[++i]);
+    } else if (a == "--forcing" && has) {
+      s.forcing = std::string(argv[++i]) == "guo" ? ehd::ForcingScheme::kGuo
+                                                  : ehd::ForcingScheme::kSplitMomentum;
     } else if (a == "--threshold") {
       threshold = true;
     } else if (a == "--scan") {
@@ -246,9 +271,11 @@ int main(int argc, char** argv) {
   }
   if (s.nx < 8 || s.ny < 8 || s.markers < 4 || !(s.tau > 0.5) || s.steps < 40) return Usage();
   std::printf("# kernel %s, %d x %d, M = %d (dl = %.4f h), tau = %g, offsets y %g x %g h, %s, %s\n",
-              s.kernel == ehd::DeltaKernel::kRoma3 ? "roma3" : "cosine", s.nx, s.ny, s.markers,
-              static_cast<double>(s.nx) / s.markers, s.tau, s.yoffset, s.xoffset,
-              s.normal ? "normal" : "tangential", s.ab2 ? "AB2" : "forward Euler");
+              s.kernel_name.c_str(), s.nx, s.ny, s.markers, static_cast<double>(s.nx) / s.markers,
+              s.tau, s.yoffset, s.xoffset, s.normal ? "normal" : "tangential",
+              s.ab2 ? "AB2" : "forward Euler");
+  std::printf("# s_e = %g, s_eps = %g, s_q = %g, forcing %s\n", s.s_e, s.s_epsilon, s.s_q,
+              s.forcing == ehd::ForcingScheme::kGuo ? "guo" : "split");
   if (stiffness >= 0.0) {
     int dominant = -1;
     const double g = Amplification(s, mode, stiffness, &dominant);

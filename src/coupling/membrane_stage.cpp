@@ -28,10 +28,15 @@ double StableLatticeStep(const Scene& scene, const MembraneStabilityLimits& limi
 // The Fourier transform of the immersed boundary's kernel (numerics.ib_kernel), which sets how
 // strongly the fluid damps a membrane mode (membrane_stability.h).
 KernelTransform KernelTransformOf(const Scene& scene) {
-  if (ParseDeltaKernel(scene.numerics.ib_kernel) == DeltaKernel::kRoma3) {
-    return Roma3DeltaTransform;
+  switch (ParseDeltaKernel(scene.numerics.ib_kernel)) {
+    case DeltaKernel::kRoma3:
+    case DeltaKernel::kRoma3EvenOdd:  // roma3 across the membrane
+      return Roma3DeltaTransform;
+    case DeltaKernel::kTrapezoid3:
+      return Trapezoid3DeltaTransform;
+    default:
+      return CosineDeltaTransform;
   }
-  return CosineDeltaTransform;
 }
 
 // The smallest spline arc length between neighbouring markers (as MembraneModel::Stability).
@@ -95,8 +100,11 @@ struct MembraneMechanics<2> {
         model_->Stability(reference, units.viscosity, 1.0, KernelTransformOf(scene));
     // The tangential grid-Nyquist limit of a kernel that transmits that mode (roma3; measured on
     // D2Q9 only, so 2D only): membrane_stability.h.
-    limits.compression_dt = LatticeCompressionStep(mp.shear_modulus, units.tau, 1.0,
-                                                   MinSpacing(reference), KernelTransformOf(scene));
+    // roma3_even_odd does not couple to that mode (trapezoid3 along each component's axis).
+    if (ParseDeltaKernel(scene.numerics.ib_kernel) != DeltaKernel::kRoma3EvenOdd) {
+      limits.compression_dt = LatticeCompressionStep(
+          mp.shear_modulus, units.tau, 1.0, MinSpacing(reference), KernelTransformOf(scene));
+    }
     const double dt_stable = StableLatticeStep(scene, limits);
     if (dt_stable < 1.0) {
       const bool bending = limits.bending_dt == limits.min_dt();

@@ -19,9 +19,12 @@ std::string SpreadStage<D>::Describe() const {
   for (const auto& source : data_.bodies.front().sources) {
     sources += (sources.empty() ? "" : " + ") + source->name;
   }
-  const std::string kernel = ib_.kernel() == DeltaKernel::kRoma3
-                                 ? "roma3 delta (Roma, Peskin & Berger 1999)"
-                                 : "cosine delta (eq. 103)";
+  const std::string kernel =
+      ib_.kernel() == DeltaKernel::kRoma3        ? "roma3 delta (Roma, Peskin & Berger 1999)"
+      : ib_.kernel() == DeltaKernel::kTrapezoid3 ? "trapezoid3 delta (3 nodes, even-odd)"
+      : ib_.kernel() == DeltaKernel::kRoma3EvenOdd
+          ? "roma3_even_odd delta (trapezoid3 along each component's axis, roma3 across)"
+          : "cosine delta (eq. 103)";
   if constexpr (D == 2) {
     return kernel + ", spread the sum of the force sources (" + sources + ") dl" +
            (scene_.has_shear() ? ", periodic in x" : "") + Retraction();

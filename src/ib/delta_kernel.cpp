@@ -9,13 +9,16 @@ namespace ehd {
 DeltaKernel ParseDeltaKernel(const std::string& name) {
   if (name == "cosine") return DeltaKernel::kCosine4;
   if (name == "roma3") return DeltaKernel::kRoma3;
+  if (name == "trapezoid3") return DeltaKernel::kTrapezoid3;
+  if (name == "roma3_even_odd") return DeltaKernel::kRoma3EvenOdd;
   throw std::invalid_argument("unknown immersed-boundary kernel '" + name +
-                              "' (expected cosine or roma3)");
+                              "' (expected cosine, roma3, trapezoid3 or roma3_even_odd)");
 }
 
 double DeltaKernelValue(DeltaKernel kernel, double r_over_h) {
   if (kernel == DeltaKernel::kCosine4) return CosineDelta(r_over_h);
   const double r = std::abs(r_over_h);
+  if (kernel == DeltaKernel::kTrapezoid3) return r <= 0.5 ? 0.5 : r <= 1.5 ? 0.75 - 0.5 * r : 0.0;
   if (r <= 0.5) return (1.0 + std::sqrt(1.0 - 3.0 * r * r)) / 3.0;
   if (r <= 1.5) {
     return (5.0 - 3.0 * r - std::sqrt(std::max(0.0, 1.0 - 3.0 * (1.0 - r) * (1.0 - r)))) / 6.0;
@@ -49,6 +52,11 @@ double Roma3DeltaTransform(double xi) {
     }
   }
   return 2.0 * sum;
+}
+
+double Trapezoid3DeltaTransform(double xi) {
+  auto sinc = [](double x) { return std::abs(x) < 1e-8 ? 1.0 - x * x / 6.0 : std::sin(x) / x; };
+  return sinc(0.5 * xi) * sinc(xi);
 }
 
 }  // namespace ehd

@@ -19,15 +19,20 @@ void CheckField(const Grid<D>& grid, const std::vector<double>& f, int component
   }
 }
 
-// The point's stencil along one axis for the kernel (W = 4: cosine, W = 3: roma3).
-template <int W>
+// The point's stencil along one axis for the kernel, and its nodes per axis.
+// (roma3_even_odd: roma3's; the loops use trapezoid3's along each component's own axis.)
+template <DeltaKernel K>
 DeltaStencil AxisStencil(double xi) {
-  if constexpr (W == 4) {
+  if constexpr (K == DeltaKernel::kCosine4) {
     return CosineDeltaStencil(xi);
+  } else if constexpr (K == DeltaKernel::kTrapezoid3) {
+    return Trapezoid3DeltaStencil(xi);
   } else {
     return Roma3DeltaStencil(xi);
   }
 }
+template <DeltaKernel K>
+constexpr int kWidth = K == DeltaKernel::kCosine4 ? 4 : 3;
 
 }  // namespace
 
@@ -52,17 +57,27 @@ template <int D>
 void ImmersedBoundaryTransfer<D>::Interpolate(const std::array<const std::vector<double>*, D>& u,
                                               const Points& X, Points& U) const {
   for (int d = 0; d < D; ++d) CheckField(grid_, *u[d], d);
-  if (kernel_ == DeltaKernel::kRoma3) {
-    InterpolateWith<3>(u, X, U);
-  } else {
-    InterpolateWith<4>(u, X, U);
+  switch (kernel_) {
+    case DeltaKernel::kRoma3:
+      InterpolateWith<DeltaKernel::kRoma3>(u, X, U);
+      break;
+    case DeltaKernel::kTrapezoid3:
+      InterpolateWith<DeltaKernel::kTrapezoid3>(u, X, U);
+      break;
+    case DeltaKernel::kRoma3EvenOdd:
+      InterpolateWith<DeltaKernel::kRoma3EvenOdd>(u, X, U);
+      break;
+    default:
+      InterpolateWith<DeltaKernel::kCosine4>(u, X, U);
   }
 }
 
 template <int D>
-template <int W>
+template <DeltaKernel K>
 void ImmersedBoundaryTransfer<D>::InterpolateWith(
     const std::array<const std::vector<double>*, D>& u, const Points& X, Points& U) const {
+  constexpr int W = kWidth<K>;
+  constexpr bool kMixed = K == DeltaKernel::kRoma3EvenOdd;
   const Eigen::Index m = X.cols();
   if (U.cols() != m) U.resize(D, m);
   const double inv_h = 1.0 / grid_.h;
@@ -72,10 +87,19 @@ void ImmersedBoundaryTransfer<D>::InterpolateWith(
   for (int d = 0; d < D; ++d) up[d] = u[d]->data();
   for (Eigen::Index c = 0; c < m; ++c) {
     // Node i sits at origin + (i + 1/2) h, so the fractional node coordinate is (x - o)/h - 1/2.
-    DeltaStencil s[D];
+    DeltaStencil s[D], e[D];
     for (int a = 0; a < D; ++a) {
-      s[a] = AxisStencil<W>((X(a, c) - grid_.origin(a)) * inv_h - 0.5);
+      const double xi = (X(a, c) - grid_.origin(a)) * inv_h - 0.5;
+      s[a] = AxisStencil<K>(xi);
+      if constexpr (kMixed) e[a] = Trapezoid3DeltaStencil(xi);
     }
+    // Component d's weights along axis a: trapezoid3 along its own axis for roma3_even_odd.
+    auto wt = [&](int d, int a) -> const double* {
+      if constexpr (kMixed) {
+        if (d == a) return e[a].weight;
+      }
+      return s[a].weight;
+    };
     int ix[W];
     for (int a = 0; a < W; ++a) ix[a] = WrapIndex(s[0].first + a, nx, periodic_[0]);
     double total[D] = {};
@@ -95,12 +119,24 @@ void ImmersedBoundaryTransfer<D>::InterpolateWith(
         double in_row[D] = {};
         for (int a = 0; a < W; ++a) {
           if (ix[a] < 0) continue;
-          for (int d = 0; d < D; ++d) in_row[d] += s[0].weight[a] * up[d][row + ix[a]];
+          if constexpr (kMixed) {
+            for (int d = 0; d < D; ++d) in_row[d] += wt(d, 0)[a] * up[d][row + ix[a]];
+          } else {
+            for (int d = 0; d < D; ++d) in_row[d] += s[0].weight[a] * up[d][row + ix[a]];
+          }
         }
-        for (int d = 0; d < D; ++d) in_plane[d] += s[1].weight[b] * in_row[d];
+        if constexpr (kMixed) {
+          for (int d = 0; d < D; ++d) in_plane[d] += wt(d, 1)[b] * in_row[d];
+        } else {
+          for (int d = 0; d < D; ++d) in_plane[d] += s[1].weight[b] * in_row[d];
+        }
       }
       if constexpr (D == 3) {
-        for (int d = 0; d < D; ++d) total[d] += s[D - 1].weight[zc] * in_plane[d];
+        if constexpr (kMixed) {
+          for (int d = 0; d < D; ++d) total[d] += wt(d, D - 1)[zc] * in_plane[d];
+        } else {
+          for (int d = 0; d < D; ++d) total[d] += s[D - 1].weight[zc] * in_plane[d];
+        }
       } else {
         for (int d = 0; d < D; ++d) total[d] = in_plane[d];
       }
@@ -117,17 +153,27 @@ void ImmersedBoundaryTransfer<D>::Spread(const Points& X, const Points& F,
     throw std::invalid_argument("ImmersedBoundary::Spread: " + std::to_string(F.cols()) +
                                 " forces for " + std::to_string(X.cols()) + " points");
   }
-  if (kernel_ == DeltaKernel::kRoma3) {
-    SpreadWith<3>(X, F, f);
-  } else {
-    SpreadWith<4>(X, F, f);
+  switch (kernel_) {
+    case DeltaKernel::kRoma3:
+      SpreadWith<DeltaKernel::kRoma3>(X, F, f);
+      break;
+    case DeltaKernel::kTrapezoid3:
+      SpreadWith<DeltaKernel::kTrapezoid3>(X, F, f);
+      break;
+    case DeltaKernel::kRoma3EvenOdd:
+      SpreadWith<DeltaKernel::kRoma3EvenOdd>(X, F, f);
+      break;
+    default:
+      SpreadWith<DeltaKernel::kCosine4>(X, F, f);
   }
 }
 
 template <int D>
-template <int W>
+template <DeltaKernel K>
 void ImmersedBoundaryTransfer<D>::SpreadWith(const Points& X, const Points& F,
                                              const std::array<std::vector<double>*, D>& f) const {
+  constexpr int W = kWidth<K>;
+  constexpr bool kMixed = K == DeltaKernel::kRoma3EvenOdd;
   const double inv_h = 1.0 / grid_.h;
   double inv_volume = inv_h * inv_h;  // 1 / h^D
   if constexpr (D == 3) inv_volume *= inv_h;
@@ -136,9 +182,11 @@ void ImmersedBoundaryTransfer<D>::SpreadWith(const Points& X, const Points& F,
   double* __restrict fp[D];
   for (int d = 0; d < D; ++d) fp[d] = f[d]->data();
   for (Eigen::Index c = 0; c < X.cols(); ++c) {
-    DeltaStencil s[D];
+    DeltaStencil s[D], e[D];
     for (int a = 0; a < D; ++a) {
-      s[a] = AxisStencil<W>((X(a, c) - grid_.origin(a)) * inv_h - 0.5);
+      const double xi = (X(a, c) - grid_.origin(a)) * inv_h - 0.5;
+      s[a] = AxisStencil<K>(xi);
+      if constexpr (kMixed) e[a] = Trapezoid3DeltaStencil(xi);
     }
     int ix[W];
     for (int a = 0; a < W; ++a) ix[a] = WrapIndex(s[0].first + a, nx, periodic_[0]);
@@ -160,10 +208,25 @@ void ImmersedBoundaryTransfer<D>::SpreadWith(const Points& X, const Points& F,
         const std::size_t row = plane + static_cast<std::size_t>(j) * static_cast<std::size_t>(nx);
         // 2D: w = phi_x phi_y exactly as before; 3D: phi_x (phi_y phi_z).
         const double wyz = D == 3 ? s[1].weight[b] * wz : s[1].weight[b];
-        for (int a = 0; a < W; ++a) {
-          if (ix[a] < 0) continue;
-          const double w = s[0].weight[a] * wyz;
-          for (int d = 0; d < D; ++d) fp[d][row + ix[a]] += w * g[d];
+        if constexpr (kMixed) {
+          // Component d: trapezoid3 along axis d, roma3 along the others.
+          double wzd[D], wyzd[D];
+          for (int d = 0; d < D; ++d) {
+            wzd[d] = D == 3 ? (d == D - 1 ? e : s)[D - 1].weight[zc] : 1.0;
+            wyzd[d] = (d == 1 ? e : s)[1].weight[b] * wzd[d];
+          }
+          for (int a = 0; a < W; ++a) {
+            if (ix[a] < 0) continue;
+            for (int d = 0; d < D; ++d) {
+              fp[d][row + ix[a]] += (d == 0 ? e : s)[0].weight[a] * wyzd[d] * g[d];
+            }
+          }
+        } else {
+          for (int a = 0; a < W; ++a) {
+            if (ix[a] < 0) continue;
+            const double w = s[0].weight[a] * wyz;
+            for (int d = 0; d < D; ++d) fp[d][row + ix[a]] += w * g[d];
+          }
         }
       }
     }

@@ -796,10 +796,13 @@ SceneModule NumericsModule(const CoreConditions& c) {
                  "numerics.relax_mesh_every steps)")
            .Otherwise(0.0)
            .Store(StoreNumerics(&SceneNumerics::redistribute_markers)),
-       ChoiceKey("numerics.ib_kernel", {"cosine", "roma3"},
+       ChoiceKey("numerics.ib_kernel", {"cosine", "roma3", "trapezoid3", "roma3_even_odd"},
                  "the immersed boundary's discrete delta: cosine (song2019 eq. (103), 4 nodes per "
-                 "axis) or roma3 (Roma, Peskin & Berger 1999, 3 nodes; ib/delta_kernel.h, "
-                 "docs/validation_3d.md \"The kernel\")")
+                 "axis), roma3 (Roma, Peskin & Berger 1999, 3 nodes; ib/delta_kernel.h, "
+                 "docs/validation_3d.md \"The kernel\"), trapezoid3 (3 nodes with the even-odd "
+                 "condition) or roma3_even_odd (trapezoid3 along each component's own axis, "
+                 "roma3 along the others; docs/validation_3d.md \"Damping the grid-Nyquist "
+                 "mode\")")
            .Default("cosine")
            .Store([](Scene& s, const SceneValue& v) { s.numerics.ib_kernel = v.text; }),
        NumberKey("numerics.ib_retraction", Closed(0.0, 1.5), "cells",
@@ -807,9 +810,14 @@ SceneModule NumericsModule(const CoreConditions& c) {
                  "their normals by this distance (calibrated per kernel on a spherical capsule's "
                  "exact small-Ca deformation and rotation; coupling/retracted_points.h, "
                  "docs/validation_3d.md); 0 = at the points (song2019)")
-           .DefaultFrom("0.5 (cosine), 0.37 (roma3)",
+           .DefaultFrom("0.5 (cosine), 0.37 (roma3), 0.58 (trapezoid3), 0.33 (roma3_even_odd)",
                         [](const Scene& s) {
-                          return SceneValue{s.numerics.ib_kernel == "roma3" ? 0.37 : 0.5, {}};
+                          const std::string& k = s.numerics.ib_kernel;
+                          return SceneValue{k == "roma3"            ? 0.37
+                                            : k == "trapezoid3"     ? 0.58
+                                            : k == "roma3_even_odd" ? 0.33
+                                                                    : 0.5,
+                                            {}};
                         })
            .Store(StoreNumerics(&SceneNumerics::ib_retraction)),
        IntegerKey("numerics.ib_extrapolate_velocity", 0, 1, "1",

@@ -67,11 +67,11 @@ class ImmersedBoundaryTransfer {
   DeltaKernel kernel_ = DeltaKernel::kCosine4;
 
  private:
-  // The loops for a kernel of W nodes per axis.
-  template <int W>
+  // The loops for kernel K.
+  template <DeltaKernel K>
   void InterpolateWith(const std::array<const std::vector<double>*, D>& u, const Points& X,
                        Points& U) const;
-  template <int W>
+  template <DeltaKernel K>
   void SpreadWith(const Points& X, const Points& F,
                   const std::array<std::vector<double>*, D>& f) const;
 };

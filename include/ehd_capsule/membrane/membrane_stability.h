@@ -22,17 +22,22 @@
 // S dt / (mu h) at which a mode grows with forward Euler, dl = 0.79 h, tau = 1:
 //   cosine  39 tangential, 44 normal (the estimate above: 13.8, 2.8 times too strict);
 //   roma3   1.15 tangential, 29 normal (the estimate: 10.4).
-// roma3's tangential mode grows at k h = pi along the membrane: a force alternating cell by cell,
-// which compresses the weakly compressible lattice fluid. The incompressible Stokes response has
-// no such mode. Its threshold in lattice units hardly follows the viscosity (S_c = 0.11 ... 0.23
-// for tau = 0.6 ... 1.5), so it is acoustic. The cosine kernel does not couple to it
-// (sum_j (-1)^j phi(r - j) = 0 at every r); roma3 couples with T_pi = 1/3.
-// LatticeCompressionStep is the empirical fit, within -7.5 % ... +2.5 % of eight measured
-// points (dl 0.75 ... 1.29 h, tau 0.6 ... 1.5):
+// roma3's tangential mode grows at k h = pi along the membrane: a force alternating cell by cell.
+// The incompressible Stokes response has no such mode. Its threshold in lattice units hardly
+// follows the viscosity (S_c = 0.11 ... 0.23 for tau = 0.6 ... 1.5). It is D2Q9's undamped momentum
+// mode at k = (pi, 0): j_x alternating along x with q_x = -j_x, every non-conserved moment at its
+// equilibrium, so no relaxation rate (s_e, s_eps, s_q) damps it; near it the damping is nu k_y^2
+// across and grows with the bulk viscosity along x (docs/validation_3d.md, "Damping the
+// grid-Nyquist mode"). The cosine, trapezoid3 and roma3_even_odd kernels do not couple to it (sum_j
+// (-1)^j phi(r - j) = 0 at every r); roma3 couples with T_pi = 1/3. LatticeCompressionStep is the
+// empirical fit, within -7.5 % ... +2.5 % of eight measured points (dl 0.75 ... 1.29 h, tau 0.6
+// ... 1.5):
 //   S_c = 0.235 (dl / h) (2 (tau - 1/2))^(1/3) / (9 T_pi^2)  (forward Euler; AB2: half).
 // Only the 2D stage applies it. D3Q19's bulk rate follows tau, and 3D is not measured.
 // It catches roma3's fast instability. A slower growth of the curved roma3 capsule below S_c
-// remains: the tiny capsule stops at t = 25 with 2 substeps and at t = 43 with 3.
+// remains: the tiny capsule stops at t = 25 with 2 substeps and at t = 43 with 3. With
+// roma3_even_odd (roma3 across each component's axis, trapezoid3 along it) the stage skips this
+// limit: the tiny capsule runs at one substep with a flat Mach number.
 #pragma once
 
 #include <functional>

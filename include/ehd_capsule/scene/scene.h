@@ -112,7 +112,10 @@ struct SceneNumerics {
   int volume_correction_every = 0;
   // The immersed boundary's discrete delta: "cosine" (song2019 eq. (103); the default) or
   // "roma3" (Roma, Peskin & Berger 1999; more accurate at large strain in 3D, but not yet stable
-  // over long runs: docs/validation_3d.md "The kernel"); ib/delta_kernel.h.
+  // over long runs: docs/validation_3d.md "The kernel"), "trapezoid3" (3 nodes with the
+  // even-odd condition) or "roma3_even_odd" (trapezoid3 along each component's own axis, roma3
+  // across: roma3's accuracy without its grid-Nyquist instability, "Damping the grid-Nyquist
+  // mode"); ib/delta_kernel.h.
   std::string ib_kernel = "cosine";
   // The immersed boundary's points retracted inward along the normals by this many cells
   // (coupling/retracted_points.h; calibrated per kernel in docs/validation_3d.md); 0 = the points
