@@ -155,11 +155,11 @@ void CheckInitialShape(const Scene& s, const LatticeUnits& u,
     throw SceneError(
         fail + " reaches " + axis + " = " + FormatValue(reach) + " a, " + where + " the wall " +
         axis + " = " + FormatValue(upper ? box_a : -box_a) + " a (" + box_key + " = " +
-        FormatValue(box_a) + "): move geometry.center_" + axis + " (now " +
-        FormatValue(centre[a]) + ")" + (ellipse ? ", change" + shape_key.substr(1) : std::string()) +
-        " or raise " + box_key + " so that the body lies inside, at least 2 h = " +
-        FormatValue(margin / u.radius) + " a from the wall (the run stops at the first step " +
-        "closer than that)");
+        FormatValue(box_a) + "): move geometry.center_" + axis + " (now " + FormatValue(centre[a]) +
+        ")" + (ellipse ? ", change" + shape_key.substr(1) : std::string()) + " or raise " +
+        box_key +
+        " so that the body lies inside, at least 2 h = " + FormatValue(margin / u.radius) +
+        " a from the wall (the run stops at the first step " + "closer than that)");
   }
 }
 

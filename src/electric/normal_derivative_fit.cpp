@@ -206,30 +206,27 @@ void NormalDerivativeFit::Evaluate(const double* phi, const double* band_jump, d
   }
 }
 
-void NormalDerivativeFit::EvaluateNormal(const double* phi, const double* band_jump,
-                                         double* dn_minus) const {
+void NormalDerivativeFit::EvaluateNormalWith(const std::vector<double>& gamma, const double* phi,
+                                             const double* band_jump, double* dn_minus) const {
   const int m = markers();
   for (int k = 0; k < m; ++k) {
     double dn = 0.0;
     for (int q = offset_[k]; q < offset_[k + 1]; ++q) {
       const int slot = plus_slot_[q];
-      dn += gamma_xi_[q] * (phi[point_[q]] - (slot >= 0 ? band_jump[slot] : 0.0));
+      dn += gamma[q] * (phi[point_[q]] - (slot >= 0 ? band_jump[slot] : 0.0));
     }
     dn_minus[k] = dn;
   }
 }
 
+void NormalDerivativeFit::EvaluateNormal(const double* phi, const double* band_jump,
+                                         double* dn_minus) const {
+  EvaluateNormalWith(gamma_xi_, phi, band_jump, dn_minus);
+}
+
 void NormalDerivativeFit::EvaluateNormalCheck(const double* phi, const double* band_jump,
                                               double* dn_minus) const {
-  const int m = markers();
-  for (int k = 0; k < m; ++k) {
-    double dn = 0.0;
-    for (int q = offset_[k]; q < offset_[k + 1]; ++q) {
-      const int slot = plus_slot_[q];
-      dn += gamma_check_[q] * (phi[point_[q]] - (slot >= 0 ? band_jump[slot] : 0.0));
-    }
-    dn_minus[k] = dn;
-  }
+  EvaluateNormalWith(gamma_check_, phi, band_jump, dn_minus);
 }
 
 void NormalDerivativeFit::SideAverages(const double* field, double* minus_average,

@@ -124,7 +124,7 @@ Band DOver(Simulation& sim, double t0, double t1) {
 
 TEST(FieldWaveform, FastAcFieldDeformsAsTheDcFieldOfTheSameMeanSquare) {
   Simulation ac(Drop(0.2).Build({"electric.waveform=ac", "electric.frequency=2"}));
-  Simulation dc(Drop(0.1).Build());                                 // E_rms^2 = E0^2 / 2: Ca_E / 2
+  Simulation dc(Drop(0.1).Build());                             // E_rms^2 = E0^2 / 2: Ca_E / 2
   const Band a = DOver(ac, 8.0, 9.0), d = DOver(dc, 8.0, 9.0);  // two periods of the force
   std::printf("AC (Ca_E 0.2, f = 2): D %.5f (%.5f .. %.5f); DC (Ca_E 0.1): D %.5f\n", a.mean, a.lo,
               a.hi, d.mean);

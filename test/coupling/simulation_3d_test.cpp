@@ -467,14 +467,14 @@ TEST(Simulation3D, CoupledStepIsBitForBitOverThreadCounts) {
 // The wall watchdog in 3D (simulation.h: a marker closer than 2 h to a wall stops the run; the
 // check is MarkerStage::CheckInside; 2D: Simulation.WatchdogNamesStepAndQuantity). Walls at
 // y = +-12 cells (L = 3 a, a = 4 cells), the margin at 10. Placed: center_y = 1.8 a puts the top
-// of the capsule at 11.2 cells: the set-up refuses it (coupled_step.cpp, CheckInitialShape). Deformed: a capsule
-// in shear near the wall does not get closer (measured at Ca = 1 from a top at 9.6 cells: the
-// wall flattens it, 9.60 -> 8.30 cells by t = 4), so the deformation is an oblate drop's (Taylor's
-// Case A, sigma_r = 1.75, eps_r = 3.5, Ca_E = 1, field along z: its equator widens towards the y
-// walls). Its top starts 0.12 cells outside the margin (9.88 cells; near the wall the top rises by
-// at most ~0.26 cells, measured from center_y = 1.4) and crosses it at t = 1.34 (step 130, a vertex
-// at y = 10.0004, D = -0.079); the run stops naming the vertex and the wall, the points finite.
-// Without the check the drop would run on to t = 3 and the test fail. 1.3 s.
+// of the capsule at 11.2 cells: the set-up refuses it (coupled_step.cpp, CheckInitialShape).
+// Deformed: a capsule in shear near the wall does not get closer (measured at Ca = 1 from a top
+// at 9.6 cells: the wall flattens it, 9.60 -> 8.30 cells by t = 4), so the deformation is an oblate
+// drop's (Taylor's Case A, sigma_r = 1.75, eps_r = 3.5, Ca_E = 1, field along z: its equator widens
+// towards the y walls). Its top starts 0.12 cells outside the margin (9.88 cells; near the wall the
+// top rises by at most ~0.26 cells, measured from center_y = 1.4) and crosses it at t = 1.34 (step
+// 130, a vertex at y = 10.0004, D = -0.079); the run stops naming the vertex and the wall, the
+// points finite. Without the check the drop would run on to t = 3 and the test fail. 1.3 s.
 TEST(Simulation3D, WallWatchdogStopsABodyNearingTheWall) {
   try {
     Simulation placed(TinySphere().Build({"geometry.center_y=1.8"}));

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "ehd_capsule/ib/immersed_boundary.h"
+#include "support/ib_contract.h"
 
 namespace ehd {
 namespace {
@@ -72,42 +73,9 @@ TEST(Roma3Delta, FourierTransformMatchesABruteForceIntegral) {
 }
 
 TEST(Roma3Transfer, TwoDimensionalAdjointConservingAndExactOnLinearFields) {
-  const Grid2D grid{24, 24, 0.5, -6.0, -6.0};
-  const ImmersedBoundaryTransfer<2> ib(grid, {true, false}, kRoma);
+  const ImmersedBoundaryTransfer<2> ib(test::ContractGrid(), {true, false}, kRoma);
   EXPECT_EQ(ib.kernel(), kRoma);
-  std::mt19937 gen(3);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::Matrix2Xd X(2, 30), F(2, 30), U;
-  for (int c = 0; c < 30; ++c) {
-    X(0, c) = 9.0 * u(gen);  // beyond the periodic x ends
-    X(1, c) = 4.5 * u(gen);  // >= 1.5 h from the walls
-    F.col(c) << u(gen), u(gen);
-  }
-  // A linear field a + b y in both components: sum phi = 1 and first moment 0 make it exact.
-  std::vector<double> ux(grid.size()), uy(grid.size()), fx(grid.size(), 0.0), fy(grid.size(), 0.0);
-  for (int j = 0; j < grid.ny; ++j) {
-    for (int i = 0; i < grid.nx; ++i) {
-      ux[grid.index(i, j)] = 2.0 + 0.3 * grid.y(j);
-      uy[grid.index(i, j)] = -1.0 - 0.7 * grid.y(j);
-    }
-  }
-  ib.Interpolate({&ux, &uy}, X, U);
-  for (int c = 0; c < 30; ++c) {
-    EXPECT_NEAR(U(0, c), 2.0 + 0.3 * X(1, c), 1e-13) << c;
-    EXPECT_NEAR(U(1, c), -1.0 - 0.7 * X(1, c), 1e-13) << c;
-  }
-  ib.Spread(X, F, {&fx, &fy});
-  double lhs = 0.0, sx = 0.0, sy = 0.0;
-  for (std::size_t j = 0; j < grid.size(); ++j) {
-    lhs += (fx[j] * ux[j] + fy[j] * uy[j]) * grid.h * grid.h;
-    sx += fx[j] * grid.h * grid.h;
-    sy += fy[j] * grid.h * grid.h;
-  }
-  double rhs = 0.0;
-  for (int c = 0; c < 30; ++c) rhs += F(0, c) * U(0, c) + F(1, c) * U(1, c);
-  EXPECT_NEAR(lhs, rhs, 1e-12 * (1.0 + std::abs(rhs)));
-  EXPECT_NEAR(sx, F.row(0).sum(), 1e-12);
-  EXPECT_NEAR(sy, F.row(1).sum(), 1e-12);
+  test::ExpectAdjointConservingAndExactOnLinearFields(ib, 3);
 }
 
 TEST(Roma3Transfer, ThreeDimensionalKernelIsTheProductAndExactOnLinearFields) {

@@ -66,6 +66,10 @@ class NormalDerivativeFit {
   const std::vector<double>& gamma_eta() const { return gamma_eta_; }
 
  private:
+  // phi_n^- from the fit rows `gamma` (gamma_xi_ or gamma_check_).
+  void EvaluateNormalWith(const std::vector<double>& gamma, const double* phi,
+                          const double* band_jump, double* dn_minus) const;
+
   std::vector<int> offset_;
   std::vector<int> point_;      // grid index
   std::vector<int> plus_slot_;  // band slot if the point is outside, -1 inside
