@@ -19,13 +19,7 @@
 namespace ehd {
 namespace {
 
-test::TinyScene SmallCaCapsule() {
-  return test::TinyScene(2)
-      .Name("small_ca_capsule")
-      .With("Ca", 0.01)
-      .With("Re", 0.2)
-      .With("numerics.threads", 1);
-}
+test::TinyScene SmallCaCapsule() { return test::TinyScene::SmallCaCapsule(0.01); }
 
 struct Steady {
   double dxy = 0, inclination = 0;

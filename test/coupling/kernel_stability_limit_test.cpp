@@ -17,13 +17,7 @@
 namespace ehd {
 namespace {
 
-test::TinyScene SmallCaCapsule() {
-  return test::TinyScene(2)
-      .Name("small_ca_capsule")
-      .With("Ca", 0.0025)
-      .With("Re", 0.2)
-      .With("numerics.threads", 1);
-}
+test::TinyScene SmallCaCapsule() { return test::TinyScene::SmallCaCapsule(0.0025); }
 
 TEST(KernelStabilityLimit, Roma3CapsuleNeedsTwoSubsteps) {
   std::string what;

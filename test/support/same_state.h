@@ -38,6 +38,26 @@ inline void ExpectSameState(const SimulationState& a, const SimulationState& b) 
   EXPECT_EQ(a.max_mach, b.max_mach);
 }
 
+// Save after `before` steps and take `after` more; restore the file into a new Simulation of the
+// scene and take the same steps: the same state and fluid, bit for bit. Returns the file's path
+// (left in place for further checks; the caller removes it).
+inline std::string ExpectCheckpointRestartIsBitForBit(const Scene& scene, int before, int after) {
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string path = ::testing::TempDir() + "/ehd_checkpoint_" + info->name() + ".bin";
+  Simulation a(scene);
+  for (int i = 0; i < before; ++i) a.Step();
+  a.Save(path);
+  for (int i = 0; i < after; ++i) a.Step();
+  Simulation b(scene);
+  b.Restore(path);
+  EXPECT_EQ(b.state().step, before);
+  for (int i = 0; i < after; ++i) b.Step();
+  ExpectSameState(a.state(), b.state());
+  EXPECT_EQ(a.ux(), b.ux());
+  EXPECT_EQ(a.uy(), b.uy());
+  return path;
+}
+
 // A live change (the node's dynamic reconfigure, Simulation::SetCa / SetCaE) is part of what a
 // checkpoint holds and what a reset undoes (docs/architecture.md, "The stage contract" 2 and 4;
 // simulation.h: Save/Restore "continues bit-for-bit", Reset "back to the initial state"). SetCa

@@ -82,6 +82,14 @@ TinyScene& TinyScene::Field(double ca_e, double sigma_r, double eps_r) {
   return With("Ca_E", ca_e).With("sigma_r", sigma_r).With("eps_r", eps_r).With("electric", "{}");
 }
 
+TinyScene TinyScene::SmallCaCapsule(double ca) {
+  return TinyScene(2)
+      .Name("small_ca_capsule")
+      .With("Ca", ca)
+      .With("Re", 0.2)
+      .With("numerics.threads", 1);
+}
+
 TinyScene& TinyScene::Drop() {
   return With("membrane", "drop").Without("E_b").Without("eta").Without("law");
 }

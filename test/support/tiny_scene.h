@@ -43,6 +43,9 @@ class TinyScene {
 
   std::string Yaml() const;
   // ParseScene(Yaml(), overrides); throws SceneError.
+  // The small-Ca 2D capsule of the small-Ca law and the kernel stability tests (a = 4 cells, 32
+  // markers, Re = 0.2, one thread) at Ca = ca.
+  static TinyScene SmallCaCapsule(double ca);
   Scene Build(const std::vector<std::string>& overrides = {}) const;
 
  private:
